@@ -1,0 +1,157 @@
+// extern "C" functions on a cbr_mesh handle: argument checks, then the
+// core, inside the exception firewall (handle.hpp).
+#include <cbr/cbr.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "handle.hpp"
+#include "mesh/tet_mesh.hpp"
+
+using cbr::capi::ApiError;
+using cbr::capi::guarded;
+using cbr::capi::require;
+
+namespace {
+
+std::string format_point(const double* p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.17g, %.17g, %.17g)", p[0], p[1], p[2]);
+    return buf;
+}
+
+// Rejects a NaN, infinite or out-of-range coordinate, naming the point.
+void check_coordinates(const double* xyz, std::int64_t count, std::int64_t first_id) {
+    static const char axis[] = "xyz";
+    for (std::int64_t i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double c = xyz[3 * i + k];
+            const double a = std::fabs(c);
+            if (!std::isfinite(c)) {
+                throw ApiError{CBR_ERR_INVALID_INPUT, "point " + std::to_string(first_id + i) + " has " +
+                                                          (std::isnan(c) ? "a NaN " : "an infinite ") + axis[k] +
+                                                          " coordinate"};
+            }
+            if (c != 0 && (a < cbr::geom::kMinMagnitude || a > cbr::geom::kMaxMagnitude)) {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, "%.17g", c);
+                throw ApiError{CBR_ERR_INVALID_INPUT,
+                               "point " + std::to_string(first_id + i) + " has " + axis[k] + " = " + buf +
+                                   ", outside the supported range (0, or magnitude within [1e-40, 1e+40])"};
+            }
+        }
+}
+
+void require_mesh(const cbr_mesh* mesh) { require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL"); }
+
+}  // namespace
+
+extern "C" {
+
+CBR_API int cbr_mesh_create(cbr_mesh** out) {
+    if (!out) return CBR_ERR_INVALID_ARGUMENT;
+    *out = nullptr;
+    try {
+        *out = new cbr_mesh();
+        return CBR_OK;
+    } catch (...) {
+        return CBR_ERR_OUT_OF_MEMORY;
+    }
+}
+
+CBR_API void cbr_mesh_destroy(cbr_mesh* mesh) { delete mesh; }
+
+CBR_API const char* cbr_mesh_last_error(const cbr_mesh* mesh) {
+    if (!mesh) return "cbr_mesh_last_error: mesh is NULL";
+    return mesh->last_error.c_str();
+}
+
+CBR_API int cbr_mesh_set_param(cbr_mesh* mesh, int key, double value) {
+    return guarded(mesh, "cbr_mesh_set_param", [&] {
+        require_mesh(mesh);
+        switch (key) {
+            case CBR_PARAM_INDEX_BASE:
+                require(value == 0.0 || value == 1.0, CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_INDEX_BASE must be 0 or 1");
+                mesh->index_base = static_cast<int>(value);
+                return CBR_OK;
+            default:
+                throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
+        }
+    });
+}
+
+CBR_API int cbr_mesh_get_param(const cbr_mesh* mesh, int key, double* value) {
+    return guarded(mesh, "cbr_mesh_get_param", [&] {
+        require_mesh(mesh);
+        require(value != nullptr, CBR_ERR_INVALID_ARGUMENT, "value is NULL");
+        switch (key) {
+            case CBR_PARAM_INDEX_BASE: *value = mesh->index_base; return CBR_OK;
+            default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
+        }
+    });
+}
+
+CBR_API int cbr_mesh_insert_points(cbr_mesh* mesh, int64_t count, const double* xyz) {
+    return guarded(mesh, "cbr_mesh_insert_points", [&] {
+        require_mesh(mesh);
+        require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
+        if (count == 0) return CBR_OK;
+        require(xyz != nullptr, CBR_ERR_INVALID_ARGUMENT, "xyz is NULL");
+        const auto existing = static_cast<std::int64_t>(mesh->delaunay.mesh().vertex_count());
+        require(count <= static_cast<std::int64_t>(cbr::mesh::kMaxVertices) - existing, CBR_ERR_INVALID_ARGUMENT,
+                "too many points: a mesh holds at most 2^31 - 2");
+        const std::int64_t first_id = existing + mesh->index_base;
+        check_coordinates(xyz, count, first_id);
+        const auto outcome = mesh->delaunay.insert_points(xyz, static_cast<std::size_t>(count));
+        if (!outcome.ok) {
+            const double* p = xyz + 3 * (std::int64_t{outcome.duplicate_second} - existing);
+            throw ApiError{CBR_ERR_INVALID_INPUT,
+                           "points " + std::to_string(outcome.duplicate_first + mesh->index_base) + " and " +
+                               std::to_string(outcome.duplicate_second + mesh->index_base) + " are identical " +
+                               format_point(p)};
+        }
+        return CBR_OK;
+    });
+}
+
+CBR_API int64_t cbr_mesh_point_count(const cbr_mesh* mesh) {
+    if (!mesh) return -1;
+    return static_cast<int64_t>(mesh->delaunay.mesh().vertex_count());
+}
+
+CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh* mesh) {
+    if (!mesh) return -1;
+    return static_cast<int64_t>(mesh->delaunay.finite_tet_count());
+}
+
+CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
+    return guarded(mesh, "cbr_mesh_get_points", [&] {
+        require_mesh(mesh);
+        const auto& coords = mesh->delaunay.mesh().coordinates();
+        if (coords.empty()) return CBR_OK;
+        require(xyz_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "xyz_out is NULL");
+        std::memcpy(xyz_out, coords.data(), coords.size() * sizeof(double));
+        return CBR_OK;
+    });
+}
+
+CBR_API int cbr_mesh_get_tets(const cbr_mesh* mesh, int64_t* tets_out) {
+    return guarded(mesh, "cbr_mesh_get_tets", [&] {
+        require_mesh(mesh);
+        const cbr::mesh::TetMesh& m = mesh->delaunay.mesh();
+        const std::int64_t base = mesh->index_base;
+        std::int64_t* out = tets_out;
+        for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
+            if (m.is_free(t) || m.is_ghost(t)) continue;
+            require(tets_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "tets_out is NULL");
+            const cbr::mesh::VertexId* v = m.vertices(t);
+            for (int i = 0; i < 4; ++i) *out++ = std::int64_t{v[i]} + base;
+        }
+        return CBR_OK;
+    });
+}
+
+}  // extern "C"

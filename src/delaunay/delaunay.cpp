@@ -1,0 +1,128 @@
+#include "delaunay/delaunay.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "delaunay/spatial_sort.hpp"
+
+namespace cbr::delaunay {
+
+using mesh::kGhostVertex;
+using mesh::VertexId;
+
+namespace {
+
+// Expected tetrahedra per point of a 3D Delaunay tetrahedralization of
+// uniformly distributed points is about 6.7; reserving a little more keeps
+// reallocation (and its transient doubling of memory) rare.
+constexpr std::size_t kTetsPerPointReserve = 7;
+
+bool same_point(const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; }
+
+// Among points [0, n), which have no tetrahedron yet, two with identical
+// coordinates, found by sorting; outcome is left alone if there are none.
+void find_duplicate(const mesh::TetMesh& m, std::size_t n, InsertOutcome& outcome) {
+    std::vector<VertexId> ids(n);
+    std::iota(ids.begin(), ids.end(), VertexId{0});
+    std::sort(ids.begin(), ids.end(), [&](VertexId a, VertexId b) {
+        const int c = geom::lexicographic_compare(m.point(a), m.point(b));
+        return c < 0 || (c == 0 && a < b);
+    });
+    for (std::size_t i = 1; i < ids.size(); ++i)
+        if (same_point(m.point(ids[i - 1]), m.point(ids[i]))) {
+            outcome = {false, std::min(ids[i - 1], ids[i]), std::max(ids[i - 1], ids[i])};
+            return;
+        }
+}
+
+}  // namespace
+
+Delaunay::Delaunay() : kernel_(mesh_, &counters_) {}
+
+std::size_t Delaunay::finite_tet_count() const {
+    std::size_t n = 0;
+    for (mesh::TetId t = 0; t < mesh_.slot_count(); ++t)
+        if (!mesh_.is_free(t) && !mesh_.is_ghost(t)) ++n;
+    return n;
+}
+
+InsertOutcome Delaunay::insert_points(const double* xyz, std::size_t count) {
+    const std::size_t before = mesh_.vertex_count();
+    InsertOutcome outcome;
+    try {
+        const VertexId first = mesh_.add_points(xyz, count);
+        outcome = insert_batch(first, mesh_.vertex_count());
+    } catch (...) {
+        mesh_.truncate_vertices(before);
+        restore_previous();
+        throw;
+    }
+    if (!outcome.ok) {
+        mesh_.truncate_vertices(before);
+        restore_previous();
+        return outcome;
+    }
+    if (count > 0) batch_ends_.push_back(mesh_.vertex_count());
+    return outcome;
+}
+
+bool Delaunay::start_triangulation(std::size_t n, std::vector<VertexId>& rest, InsertOutcome& outcome) {
+    // i0 = 0; i1: first point distinct from it; i2: first not on their
+    // line; i3: first not in their plane. Skipped points are inserted later.
+    VertexId pick[4] = {0, 0, 0, 0};
+    std::size_t found = n > 0 ? 1 : 0;
+    for (VertexId v = 1; v < n && found < 4; ++v) {
+        const double* p = mesh_.point(v);
+        bool independent = false;
+        if (found == 1) independent = !same_point(mesh_.point(pick[0]), p);
+        if (found == 2) independent = !geom::collinear(mesh_.point(pick[0]), mesh_.point(pick[1]), p);
+        if (found == 3)
+            independent = geom::orient3d(mesh_.point(pick[0]), mesh_.point(pick[1]), mesh_.point(pick[2]), p) != 0;
+        if (independent) pick[found++] = v;
+    }
+    if (found < 4) {
+        // No tetrahedron yet (fewer than 4 points, or all coplanar); the
+        // points wait for a later batch, but duplicates are reported now.
+        find_duplicate(mesh_, n, outcome);
+        return false;
+    }
+    if (geom::orient3d(mesh_.point(pick[0]), mesh_.point(pick[1]), mesh_.point(pick[2]), mesh_.point(pick[3])) < 0)
+        std::swap(pick[0], pick[1]);
+    kernel_.build_first_tet(pick[0], pick[1], pick[2], pick[3]);
+    rest.clear();
+    for (VertexId v = 0; v < n; ++v)
+        if (v != pick[0] && v != pick[1] && v != pick[2] && v != pick[3]) rest.push_back(v);
+    return true;
+}
+
+InsertOutcome Delaunay::insert_batch(VertexId first, std::size_t end) {
+    InsertOutcome outcome;
+    std::vector<VertexId> order;
+    if (mesh_.live_count() == 0) {
+        if (!start_triangulation(end, order, outcome)) return outcome;
+    } else {
+        order.resize(end - first);
+        std::iota(order.begin(), order.end(), first);
+    }
+    mesh_.reserve_tets(kTetsPerPointReserve * end + 64);
+    // The seed depends on the batch only, so a replay draws the same order.
+    kernel_.set_seed(0x9E3779B97F4A7C15ull ^ (std::uint64_t{first} << 20) ^ order.size());
+    brio_sort(mesh_.coordinates().data(), order, 0xC0FFEEull + order.size());
+    for (VertexId v : order) {
+        const VertexId twin = kernel_.insert(v);
+        if (twin != kGhostVertex) return {false, std::min(v, twin), std::max(v, twin)};
+    }
+    return outcome;
+}
+
+void Delaunay::restore_previous() {
+    mesh_.clear_tets();
+    kernel_.set_hint(0);
+    std::size_t first = 0;
+    for (std::size_t end : batch_ends_) {
+        insert_batch(static_cast<VertexId>(first), end);
+        first = end;
+    }
+}
+
+}  // namespace cbr::delaunay

@@ -1,0 +1,60 @@
+// The Delaunay tetrahedralization of a growing point set, updated one batch
+// of points at a time. Degenerate configurations are resolved by the
+// symbolic perturbation of geom::insphere_sos, so the result is unique: it
+// depends on the point set only, not on batches or order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "delaunay/kernel.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::delaunay {
+
+// Result of a batch insertion.
+struct InsertOutcome {
+    bool ok = true;
+    // When !ok: two points with identical coordinates (ids, first < second).
+    mesh::VertexId duplicate_first = 0, duplicate_second = 0;
+};
+
+class Delaunay {
+public:
+    Delaunay();
+    Delaunay(const Delaunay&) = delete;
+    Delaunay& operator=(const Delaunay&) = delete;
+
+    // Appends `count` points (3 doubles each, finite and in the predicates'
+    // range: the caller checks) and updates the tetrahedralization. On
+    // duplicate points, or when an exception (std::bad_alloc, ...) leaves
+    // this function, the previous state is restored exactly (see
+    // restore_previous) and the outcome names the duplicates.
+    InsertOutcome insert_points(const double* xyz, std::size_t count);
+
+    const mesh::TetMesh& mesh() const { return mesh_; }
+    const geom::PredicateCounters& counters() const { return counters_; }
+    // Finite (non-ghost) tetrahedra.
+    std::size_t finite_tet_count() const;
+
+private:
+    // Inserts vertices [first, end) as one batch.
+    InsertOutcome insert_batch(mesh::VertexId first, std::size_t end);
+    // Before the first tetrahedron exists: finds four affinely independent
+    // points among [0, n), builds the first tetrahedron and returns true
+    // with the other points in `rest`. False when there is no such
+    // quadruple (then duplicates among them, if any, are in `outcome`).
+    bool start_triangulation(std::size_t n, std::vector<mesh::VertexId>& rest, InsertOutcome& outcome);
+    // Rebuilds the state as it was after the successful batches: the
+    // algorithm is deterministic, so replaying them gives bit-identical
+    // arrays (same tetrahedra, same order).
+    void restore_previous();
+
+    mesh::TetMesh mesh_;
+    geom::PredicateCounters counters_;
+    Kernel kernel_;
+    std::vector<std::size_t> batch_ends_;  // vertex count after each successful batch
+};
+
+}  // namespace cbr::delaunay

@@ -1,0 +1,119 @@
+#include "delaunay/spatial_sort.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace cbr::delaunay {
+namespace {
+
+constexpr int kHilbertBits = 16;               // 2^16 cells per axis: 48-bit keys
+constexpr std::size_t kSmallestRound = 1024;   // BRIO: below this, one round
+constexpr std::size_t kRoundDivisor = 4;       // each round is 1/4 of the next
+
+std::uint64_t splitmix64(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+struct KeyedId {
+    std::uint64_t key;
+    mesh::VertexId id;
+};
+
+// LSD radix sort on the low `key_bits` bits, 8 bits a pass; stable.
+void radix_sort(std::vector<KeyedId>& items, int key_bits) {
+    std::vector<KeyedId> buffer(items.size());
+    for (int shift = 0; shift < key_bits; shift += 8) {
+        std::array<std::size_t, 257> count{};
+        for (const KeyedId& it : items) ++count[((it.key >> shift) & 0xFF) + 1];
+        if (count[1 + ((items.front().key >> shift) & 0xFF)] == items.size()) continue;  // one bucket
+        for (int b = 0; b < 256; ++b) count[b + 1] += count[b];
+        for (const KeyedId& it : items) buffer[count[(it.key >> shift) & 0xFF]++] = it;
+        items.swap(buffer);
+    }
+}
+
+}  // namespace
+
+// Skilling's transform ("Programming the Hilbert curve", 2004): turns the
+// coordinates into the transposed Hilbert index in place, then the bits are
+// interleaved, most significant level first.
+std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits) {
+    std::uint32_t X[3] = {x, y, z};
+    const std::uint32_t top = 1u << (bits - 1);
+    for (std::uint32_t q = top; q > 1; q >>= 1) {
+        const std::uint32_t p = q - 1;
+        for (int i = 0; i < 3; ++i) {
+            if (X[i] & q) {
+                X[0] ^= p;  // invert low bits of X[0]
+            } else {        // exchange low bits of X[0] and X[i]
+                const std::uint32_t t = (X[0] ^ X[i]) & p;
+                X[0] ^= t;
+                X[i] ^= t;
+            }
+        }
+    }
+    X[1] ^= X[0];  // Gray encode
+    X[2] ^= X[1];
+    std::uint32_t t = 0;
+    for (std::uint32_t q = top; q > 1; q >>= 1)
+        if (X[2] & q) t ^= q - 1;
+    for (std::uint32_t& c : X) c ^= t;
+
+    std::uint64_t key = 0;
+    for (int b = bits - 1; b >= 0; --b)
+        for (int i = 0; i < 3; ++i) key = (key << 1) | ((X[i] >> b) & 1u);
+    return key;
+}
+
+void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* last) {
+    const std::size_t n = static_cast<std::size_t>(last - first);
+    if (n < 2) return;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = coords[3 * std::size_t{*first} + k];
+    for (const mesh::VertexId* v = first; v != last; ++v)
+        for (int k = 0; k < 3; ++k) {
+            const double c = coords[3 * std::size_t{*v} + k];
+            lo[k] = std::min(lo[k], c);
+            hi[k] = std::max(hi[k], c);
+        }
+    // One scale for all axes keeps the curve's cells cubic. Computed as
+    // cells / extent so no intermediate overflows for large coordinates.
+    const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const double cells = double((1u << kHilbertBits) - 1);
+    const double scale = extent > 0 ? cells / extent : 0.0;
+
+    std::vector<KeyedId> items(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double* p = coords + 3 * std::size_t{first[i]};
+        std::uint32_t q[3];
+        for (int k = 0; k < 3; ++k) {
+            const double s = std::min(cells, std::max(0.0, (p[k] - lo[k]) * scale));
+            q[k] = static_cast<std::uint32_t>(s);
+        }
+        items[i] = {hilbert_index(q[0], q[1], q[2], kHilbertBits), first[i]};
+    }
+    radix_sort(items, 3 * kHilbertBits);
+    for (std::size_t i = 0; i < n; ++i) first[i] = items[i].id;
+}
+
+void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint64_t seed) {
+    // Fisher-Yates with our own generator: the order is the same everywhere.
+    std::uint64_t state = seed;
+    for (std::size_t i = ids.size(); i > 1; --i) {
+        const std::size_t j = static_cast<std::size_t>(splitmix64(state) % i);
+        std::swap(ids[i - 1], ids[j]);
+    }
+    // Rounds: [0, r0) [r0, r1) ... each round kRoundDivisor times the last.
+    std::size_t end = ids.size();
+    while (end > 0) {
+        const std::size_t begin = end > kSmallestRound ? end / kRoundDivisor : 0;
+        hilbert_sort(coords, ids.data() + begin, ids.data() + end);
+        end = begin;
+    }
+}
+
+}  // namespace cbr::delaunay

@@ -1,0 +1,136 @@
+#include "mesh/mesh_check.hpp"
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+#include <unordered_set>
+
+#include "geom/predicates.hpp"
+
+namespace cbr::mesh {
+namespace {
+
+constexpr std::size_t kMaxReported = 10;
+
+std::array<VertexId, 3> sorted_face(const TetMesh& m, TetId t, int f) {
+    std::array<VertexId, 3> v = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]),
+                                 m.vertex(t, kFaceVertices[f][2])};
+    std::sort(v.begin(), v.end());
+    return v;
+}
+
+std::string tet_name(const TetMesh& m, TetId t) {
+    std::ostringstream s;
+    s << "tet " << t << " (";
+    for (int i = 0; i < 4; ++i) {
+        const VertexId v = m.vertex(t, i);
+        if (i) s << ' ';
+        if (v == kGhostVertex) s << "ghost"; else s << v;
+    }
+    s << ')';
+    return s.str();
+}
+
+// p in conflict with ghost (a, b, c, oo): the kernel's test, restated.
+bool ghost_conflict(const TetMesh& m, TetId g, const double* p) {
+    const double* a = m.point(m.vertex(g, 0));
+    const double* b = m.point(m.vertex(g, 1));
+    const double* c = m.point(m.vertex(g, 2));
+    const int side = geom::orient3d(a, b, c, p);
+    return side > 0 || (side == 0 && geom::incircle_coplanar_sos(a, b, c, p) > 0);
+}
+
+void check_links(const TetMesh& m, TetId t, CheckReport& r) {
+    for (int f = 0; f < 4; ++f) {
+        const FacetRef out = m.neighbor(t, f);
+        const TetId n = facet_tet(out);
+        if (n >= m.slot_count() || m.is_free(n)) {
+            r.add(tet_name(m, t) + ": face " + std::to_string(f) + " links to a missing tetrahedron");
+            continue;
+        }
+        if (m.neighbor(n, facet_face(out)) != make_facet(t, f))
+            r.add(tet_name(m, t) + ": face " + std::to_string(f) + " link is not symmetric");
+        else if (sorted_face(m, t, f) != sorted_face(m, n, facet_face(out)))
+            r.add(tet_name(m, t) + " and " + tet_name(m, n) + " are linked across different faces");
+    }
+}
+
+void check_shape(const TetMesh& m, TetId t, std::vector<char>& used, CheckReport& r) {
+    const VertexId* v = m.vertices(t);
+    for (int i = 0; i < 4; ++i) {
+        if (v[i] == kGhostVertex && i == 3) continue;
+        if (v[i] >= m.vertex_count()) {
+            r.add(tet_name(m, t) + ": vertex id out of range");
+            return;
+        }
+        used[v[i]] = 1;
+    }
+    if (m.is_ghost(t)) {
+        if (m.is_ghost(facet_tet(m.neighbor(t, 3))))
+            r.add(tet_name(m, t) + ": ghost whose hull face borders another ghost");
+        return;
+    }
+    if (geom::orient3d(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])) <= 0)
+        r.add(tet_name(m, t) + " is not positively oriented");
+}
+
+}  // namespace
+
+void CheckReport::add(std::string message) {
+    if (errors.size() < kMaxReported) errors.push_back(std::move(message));
+    ++error_count;
+}
+
+CheckReport check_mesh(const TetMesh& m) {
+    CheckReport r;
+    std::vector<char> used(m.vertex_count(), 0);
+    std::size_t ghosts = 0, live = 0;
+    std::unordered_set<VertexId> hull_vertices;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        ++live;
+        check_shape(m, t, used, r);
+        check_links(m, t, r);
+        if (m.is_ghost(t)) {
+            ++ghosts;
+            for (int i = 0; i < 3; ++i) hull_vertices.insert(m.vertex(t, i));
+        }
+    }
+    if (live == 0) return r;
+    // The hull is a closed triangulated sphere: F faces, 3F/2 edges.
+    const long long V = static_cast<long long>(hull_vertices.size());
+    const long long F = static_cast<long long>(ghosts);
+    if (F % 2 != 0 || V - 3 * F / 2 + F != 2)
+        r.add("hull is not a closed sphere: " + std::to_string(V) + " vertices, " + std::to_string(F) + " faces");
+    for (std::size_t v = 0; v < used.size(); ++v)
+        if (!used[v]) r.add("vertex " + std::to_string(v) + " is in no tetrahedron");
+    return r;
+}
+
+CheckReport check_delaunay(const TetMesh& m) {
+    CheckReport r = check_mesh(m);
+    if (!r.ok()) return r;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        for (int f = 0; f < 4; ++f) {
+            const FacetRef out = m.neighbor(t, f);
+            const TetId n = facet_tet(out);
+            if (n < t) continue;  // each face once
+            const VertexId apex_n = m.vertex(n, facet_face(out));
+            const VertexId apex_t = m.vertex(t, f);
+            bool violated = false;
+            if (!m.is_ghost(t) && !m.is_ghost(n)) {
+                const VertexId* v = m.vertices(t);
+                violated = geom::insphere_sos(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]),
+                                              m.point(apex_n)) >= 0;
+            } else {
+                if (m.is_ghost(t) && apex_n != kGhostVertex) violated |= ghost_conflict(m, t, m.point(apex_n));
+                if (m.is_ghost(n) && apex_t != kGhostVertex) violated |= ghost_conflict(m, n, m.point(apex_t));
+            }
+            if (violated) r.add("face between " + tet_name(m, t) + " and " + tet_name(m, n) + " is not locally Delaunay");
+        }
+    }
+    return r;
+}
+
+}  // namespace cbr::mesh

@@ -1,0 +1,230 @@
+// Incremental Delaunay: after every construction the whole mesh is checked
+// exactly (adjacency, orientation, closed hull, every face locally Delaunay
+// under the perturbation, which proves the mesh Delaunay).
+#include <doctest/doctest.h>
+
+#include <numeric>
+
+#include "delaunay/delaunay.hpp"
+#include "delaunay/spatial_sort.hpp"
+#include "mesh/mesh_check.hpp"
+#include "test_util.hpp"
+
+using cbr::delaunay::Delaunay;
+using cbr::mesh::TetMesh;
+
+namespace {
+
+void require_delaunay(const Delaunay& d) {
+    const auto report = cbr::mesh::check_delaunay(d.mesh());
+    for (const auto& e : report.errors) MESSAGE(e);
+    REQUIRE(report.ok());
+}
+
+std::vector<std::int64_t> finite_tets(const TetMesh& m) {
+    std::vector<std::int64_t> out;
+    for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t) && !m.is_ghost(t))
+            for (int i = 0; i < 4; ++i) out.push_back(m.vertex(t, i));
+    return out;
+}
+
+// Sum of tetrahedron volumes (6x, in long double): the hull's volume.
+long double six_volume(const TetMesh& m) {
+    long double sum = 0;
+    for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        const double* a = m.point(m.vertex(t, 0));
+        long double u[3], v[3], w[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = (long double)m.point(m.vertex(t, 1))[k] - a[k];
+            v[k] = (long double)m.point(m.vertex(t, 2))[k] - a[k];
+            w[k] = (long double)m.point(m.vertex(t, 3))[k] - a[k];
+        }
+        sum += u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+               u[2] * (v[0] * w[1] - v[1] * w[0]);
+    }
+    return sum;
+}
+
+Delaunay& build(Delaunay& d, const std::vector<double>& xyz) {
+    const auto outcome = d.insert_points(xyz.data(), xyz.size() / 3);
+    REQUIRE(outcome.ok);
+    return d;
+}
+
+}  // namespace
+
+TEST_CASE("a cube and its centre give 12 tetrahedra") {
+    std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1, 0.5, 0.5, 0.5};
+    Delaunay d;
+    build(d, xyz);
+    require_delaunay(d);
+    CHECK(d.finite_tet_count() == 12);
+    CHECK(six_volume(d.mesh()) == doctest::Approx(6.0));
+}
+
+TEST_CASE("fewer than four points, or all coplanar, give no tetrahedra") {
+    Delaunay d;
+    build(d, {0, 0, 0, 1, 0, 2, 0, 1, -1});
+    CHECK(d.finite_tet_count() == 0);
+    // 1000 points exactly in the tilted plane z = 2x - y (x, y multiples of
+    // 2^-10, so z is exact): still none.
+    std::vector<double> plane;
+    auto r = cbr::test::random_points(1000, 7);
+    for (std::size_t i = 0; i < r.size(); i += 3) {
+        const double x = std::floor(r[i] * 1024) / 1024, y = std::floor(r[i + 1] * 1024) / 1024;
+        plane.insert(plane.end(), {x, y, 2 * x - y});
+    }
+    build(d, plane);
+    CHECK(d.finite_tet_count() == 0);
+    REQUIRE(d.mesh().vertex_count() == 1003);
+    // One point off the plane: every point becomes a vertex of a valid mesh.
+    build(d, {0.5, 0.5, 3.0});
+    CHECK(d.finite_tet_count() > 0);
+    require_delaunay(d);
+}
+
+TEST_CASE("uniform random points") {
+    for (std::size_t n : {5u, 50u, 2000u, 20000u}) {
+        CAPTURE(n);
+        Delaunay d;
+        build(d, cbr::test::random_points(n, 42 + n));
+        require_delaunay(d);
+        if (n >= 2000) CHECK(d.finite_tet_count() > 6 * n);  // about 6.7 n for large n
+    }
+}
+
+TEST_CASE("20 x 20 x 20 grid: every cube cospherical") {
+    Delaunay d;
+    build(d, cbr::test::grid_points(20));
+    require_delaunay(d);
+    // The tetrahedra tile the hull exactly: volume 19^3.
+    CHECK(six_volume(d.mesh()) == 6.0L * 19 * 19 * 19);
+}
+
+TEST_CASE("points exactly on one sphere: every insphere test is degenerate") {
+    const auto xyz = cbr::test::integer_sphere_points(11 * 11 * 3);  // 363 = 11^2 + 11^2 + 11^2
+    REQUIRE(xyz.size() / 3 > 50);
+    Delaunay d;
+    build(d, xyz);
+    require_delaunay(d);
+    CHECK(d.counters().insphere_perturbed > 0);  // the perturbation decided
+}
+
+TEST_CASE("the triangulation depends only on the point set") {
+    const auto xyz = cbr::test::grid_points(6, 0.25);  // degenerate everywhere
+    const std::size_t n = xyz.size() / 3;
+    Delaunay one;
+    build(one, xyz);
+    const auto reference = cbr::test::canonical(finite_tets(one.mesh()));
+
+    SUBCASE("several insert calls versus one") {
+        Delaunay several;
+        for (std::size_t first = 0; first < n; first += 37) {
+            const std::size_t count = std::min<std::size_t>(37, n - first);
+            REQUIRE(several.insert_points(xyz.data() + 3 * first, count).ok);
+        }
+        require_delaunay(several);
+        CHECK(cbr::test::canonical(finite_tets(several.mesh())) == reference);
+    }
+    SUBCASE("another input order") {
+        std::vector<std::size_t> perm(n);
+        std::iota(perm.begin(), perm.end(), 0);
+        std::reverse(perm.begin(), perm.end());
+        std::vector<double> shuffled;
+        for (std::size_t i : perm) shuffled.insert(shuffled.end(), &xyz[3 * i], &xyz[3 * i + 3]);
+        Delaunay other;
+        build(other, shuffled);
+        // Map ids back to the original numbering before comparing.
+        std::vector<std::int64_t> tets = finite_tets(other.mesh());
+        for (auto& v : tets) v = static_cast<std::int64_t>(perm[static_cast<std::size_t>(v)]);
+        CHECK(cbr::test::canonical(tets) == reference);
+    }
+}
+
+TEST_CASE("clustered points at 1e-9 and 1e+9 scales") {
+    for (double scale : {1e-9, 1e+9}) {
+        CAPTURE(scale);
+        std::vector<double> xyz;
+        // Ten tight clusters: each spread 1e-6 of the scale around a centre.
+        auto centres = cbr::test::random_points(10, 3, -scale, scale);
+        auto offsets = cbr::test::random_points(3000, 4, -1e-6 * scale, 1e-6 * scale);
+        for (std::size_t i = 0; i < offsets.size(); i += 3) {
+            const std::size_t c = (i / 3) % 10;
+            for (int k = 0; k < 3; ++k) xyz.push_back(centres[3 * c + k] + offsets[i + k]);
+        }
+        Delaunay d;
+        build(d, xyz);
+        require_delaunay(d);
+    }
+}
+
+TEST_CASE("nearly equal large coordinates with tiny offsets") {
+    std::vector<double> xyz;
+    auto r = cbr::test::random_points(500, 11);
+    for (std::size_t i = 0; i < r.size(); ++i) xyz.push_back(1e15 + std::floor(r[i] * 64) * 0.125);
+    // Integer-ish lattice far from the origin: many exact degeneracies.
+    std::vector<double> unique;
+    std::set<std::array<double, 3>> seen;
+    for (std::size_t i = 0; i < xyz.size(); i += 3)
+        if (seen.insert({xyz[i], xyz[i + 1], xyz[i + 2]}).second) unique.insert(unique.end(), &xyz[i], &xyz[i + 3]);
+    Delaunay d;
+    build(d, unique);
+    require_delaunay(d);
+}
+
+TEST_CASE("duplicate points are reported and the mesh is left exactly as it was") {
+    Delaunay d;
+    build(d, cbr::test::random_points(300, 5));
+    const auto before = finite_tets(d.mesh());
+    const auto coords_before = d.mesh().coordinates();
+
+    SUBCASE("a duplicate of an existing point") {
+        std::vector<double> batch = cbr::test::random_points(50, 6);
+        batch[3 * 20 + 0] = coords_before[3 * 17 + 0];
+        batch[3 * 20 + 1] = coords_before[3 * 17 + 1];
+        batch[3 * 20 + 2] = coords_before[3 * 17 + 2];
+        const auto outcome = d.insert_points(batch.data(), 50);
+        CHECK_FALSE(outcome.ok);
+        CHECK(outcome.duplicate_first == 17);
+        CHECK(outcome.duplicate_second == 300 + 20);
+    }
+    SUBCASE("two identical points in one batch") {
+        std::vector<double> batch = cbr::test::random_points(50, 8);
+        for (int k = 0; k < 3; ++k) batch[3 * 40 + k] = batch[3 * 9 + k];
+        const auto outcome = d.insert_points(batch.data(), 50);
+        CHECK_FALSE(outcome.ok);
+        CHECK(outcome.duplicate_first == 309);
+        CHECK(outcome.duplicate_second == 340);
+    }
+    CHECK(d.mesh().coordinates() == coords_before);
+    CHECK(finite_tets(d.mesh()) == before);  // same tetrahedra in the same order
+    require_delaunay(d);
+}
+
+TEST_CASE("duplicates before the first tetrahedron exists") {
+    Delaunay d;
+    const auto outcome = d.insert_points(std::vector<double>{0, 0, 0, 1, 1, 1, 0, 0, 0}.data(), 3);
+    CHECK_FALSE(outcome.ok);
+    CHECK(outcome.duplicate_first == 0);
+    CHECK(outcome.duplicate_second == 2);
+    CHECK(d.mesh().vertex_count() == 0);
+}
+
+TEST_CASE("Hilbert index visits neighbouring cells consecutively") {
+    // On a 2^b grid, consecutive Hilbert indices are adjacent cells.
+    const int bits = 3, side = 1 << bits;
+    std::vector<std::array<int, 3>> by_index(side * side * side);
+    for (int x = 0; x < side; ++x)
+        for (int y = 0; y < side; ++y)
+            for (int z = 0; z < side; ++z)
+                by_index[cbr::delaunay::hilbert_index(x, y, z, bits)] = {x, y, z};
+    std::set<std::array<int, 3>> distinct(by_index.begin(), by_index.end());
+    CHECK(distinct.size() == by_index.size());  // a bijection
+    for (std::size_t i = 1; i < by_index.size(); ++i) {
+        int manhattan = 0;
+        for (int k = 0; k < 3; ++k) manhattan += std::abs(by_index[i][k] - by_index[i - 1][k]);
+        CHECK(manhattan == 1);
+    }
+}

@@ -1,0 +1,99 @@
+// Helpers shared by the tests: point generators, canonical tetrahedron
+// sets, the shared-data directory, a tiny OFF reader.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace cbr::test {
+
+inline std::vector<double> random_points(std::size_t n, std::uint64_t seed, double lo = 0.0, double hi = 1.0) {
+    std::mt19937_64 rng(seed);
+    std::vector<double> xyz(3 * n);
+    for (double& c : xyz) c = lo + (hi - lo) * (double(rng() >> 11) * 0x1.0p-53);
+    return xyz;
+}
+
+inline std::vector<double> grid_points(int n, double spacing = 1.0) {
+    std::vector<double> xyz;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) xyz.insert(xyz.end(), {i * spacing, j * spacing, k * spacing});
+    return xyz;
+}
+
+// Integer points exactly on the sphere x^2 + y^2 + z^2 = r2.
+inline std::vector<double> integer_sphere_points(int r2) {
+    std::vector<double> xyz;
+    const int r = static_cast<int>(std::sqrt(double(r2))) + 1;
+    for (int x = -r; x <= r; ++x)
+        for (int y = -r; y <= r; ++y)
+            for (int z = -r; z <= r; ++z)
+                if (x * x + y * y + z * z == r2) xyz.insert(xyz.end(), {double(x), double(y), double(z)});
+    return xyz;
+}
+
+// Tetrahedra as sorted 4-tuples: compares triangulations regardless of the
+// order of tetrahedra and of vertices within them.
+using TetSet = std::set<std::array<std::int64_t, 4>>;
+inline TetSet canonical(const std::vector<std::int64_t>& tets) {
+    TetSet s;
+    for (std::size_t i = 0; i + 3 < tets.size(); i += 4) {
+        std::array<std::int64_t, 4> t = {tets[i], tets[i + 1], tets[i + 2], tets[i + 3]};
+        std::sort(t.begin(), t.end());
+        s.insert(t);
+    }
+    return s;
+}
+
+// The shared data directory (surfaces/, invalid/), or "" when absent.
+inline std::string shared_data_dir() {
+    const char* env = std::getenv("CBR_SHARED_DATA_DIR");
+    if (env && std::filesystem::is_directory(std::string(env) + "/surfaces")) return env;
+    return "";
+}
+
+struct OffSurface {
+    std::vector<double> xyz;
+    std::vector<std::int64_t> tris;
+};
+
+// Reads the shared data's OFF files (triangles only, no comments).
+inline bool read_off(const std::string& path, OffSurface& s) {
+    std::ifstream in(path);
+    std::string magic;
+    std::size_t nv = 0, nf = 0, ne = 0;
+    if (!(in >> magic >> nv >> nf >> ne) || magic != "OFF") return false;
+    s.xyz.resize(3 * nv);
+    for (double& c : s.xyz)
+        if (!(in >> c)) return false;
+    s.tris.resize(3 * nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+        int k = 0;
+        if (!(in >> k) || k != 3) return false;
+        for (int i = 0; i < 3; ++i)
+            if (!(in >> s.tris[3 * f + i])) return false;
+    }
+    return true;
+}
+
+inline std::vector<std::string> shared_surfaces() {
+    std::vector<std::string> files;
+    const std::string dir = shared_data_dir();
+    if (dir.empty()) return files;
+    for (const auto& e : std::filesystem::directory_iterator(dir + "/surfaces"))
+        if (e.path().extension() == ".off") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+}  // namespace cbr::test
