@@ -1,0 +1,504 @@
+// Input surface validation (see surface_check.hpp).
+#include "recover/surface_check.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "geom/intersect.hpp"
+#include "geom/predicates.hpp"
+
+namespace cbr::recover {
+namespace {
+
+using Ids = std::array<std::int64_t, 3>;
+
+// ---------------------------------------------------------------------------
+// The input, read-only.
+// ---------------------------------------------------------------------------
+struct Surface {
+    const double* xyz;
+    std::int64_t point_count;
+    const std::int64_t* tris;
+    std::size_t triangle_count;
+
+    Ids ids(std::size_t t) const { return {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]}; }
+    const double* point(std::int64_t id) const { return xyz + 3 * static_cast<std::size_t>(id); }
+};
+
+enum class TriState : std::uint8_t {
+    Usable,      // ids valid and distinct, non-zero area: geometry is tested
+    Degenerate,  // ids valid and distinct, zero area: combinatorics only
+    Invalid,     // an id out of range or repeated: skipped afterwards
+};
+
+// Counts every defect of each kind and keeps the first few. Each pass adds
+// its defects in the deterministic order, so "first" is well defined.
+class Collector {
+public:
+    explicit Collector(std::size_t cap) : cap_(cap) {}
+
+    void add(const Defect& d) {
+        const auto k = static_cast<std::size_t>(d.kind);
+        ++counts_[k];
+        if (lists_[k].size() < cap_) lists_[k].push_back(d);
+    }
+    // Counts defects of `kind` that are not listed.
+    void add_unlisted(DefectKind kind, std::int64_t n) {
+        counts_[static_cast<std::size_t>(kind)] += n;
+    }
+    std::size_t cap() const { return cap_; }
+
+    SurfaceCheckResult finish() {
+        SurfaceCheckResult r;
+        for (std::size_t k = 0; k < kDefectKindCount; ++k)
+            r.defects.insert(r.defects.end(), lists_[k].begin(), lists_[k].end());
+        r.counts = counts_;
+        return r;
+    }
+
+private:
+    std::size_t cap_;
+    std::array<std::vector<Defect>, kDefectKindCount> lists_;
+    std::array<std::int64_t, kDefectKindCount> counts_{};
+};
+
+Defect triangle_defect(DefectKind kind, std::size_t t, const Ids& ids) {
+    Defect d;
+    d.kind = kind;
+    d.tri[0] = static_cast<std::int64_t>(t);
+    d.vert = ids;
+    return d;
+}
+
+// ---------------------------------------------------------------------------
+// Pass 1: each triangle alone.
+// ---------------------------------------------------------------------------
+TriState check_triangle(const Surface& s, std::size_t t, Collector& out) {
+    const Ids v = s.ids(t);
+    for (const std::int64_t id : v)
+        if (id < 0 || id >= s.point_count) {
+            Defect d = triangle_defect(DefectKind::IdOutOfRange, t, v);
+            d.value = s.point_count;
+            out.add(d);
+            return TriState::Invalid;
+        }
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
+        out.add(triangle_defect(DefectKind::RepeatedId, t, v));
+        return TriState::Invalid;
+    }
+    if (geom::collinear(s.point(v[0]), s.point(v[1]), s.point(v[2]))) {
+        out.add(triangle_defect(DefectKind::ZeroArea, t, v));
+        return TriState::Degenerate;
+    }
+    return TriState::Usable;
+}
+
+// ---------------------------------------------------------------------------
+// Pass 2: the same vertex set twice. Each later copy is reported against
+// the first one.
+// ---------------------------------------------------------------------------
+void find_duplicates(const Surface& s, const std::vector<TriState>& state, Collector& out) {
+    std::vector<std::pair<Ids, std::size_t>> keys;  // sorted ids, triangle
+    for (std::size_t t = 0; t < s.triangle_count; ++t) {
+        if (state[t] == TriState::Invalid) continue;
+        Ids v = s.ids(t);
+        std::sort(v.begin(), v.end());
+        keys.emplace_back(v, t);
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i + 1;
+        for (; j < keys.size() && keys[j].first == keys[i].first; ++j)
+            pairs.emplace_back(keys[i].second, keys[j].second);
+        i = j;
+    }
+    std::sort(pairs.begin(), pairs.end());
+    for (const auto& [first, copy] : pairs) {
+        Defect d = triangle_defect(DefectKind::DuplicateTriangle, first, s.ids(copy));
+        d.tri[1] = static_cast<std::int64_t>(copy);
+        out.add(d);
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Pass 4 (information): how many triangles use each edge.
+// ---------------------------------------------------------------------------
+void report_edges(const Surface& s, const std::vector<TriState>& state, Collector& out) {
+    struct EdgeUse {
+        std::int64_t u, v;  // u < v
+        std::size_t tri;
+        bool operator<(const EdgeUse& o) const {
+            return u != o.u ? u < o.u : (v != o.v ? v < o.v : tri < o.tri);
+        }
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * s.triangle_count);
+    for (std::size_t t = 0; t < s.triangle_count; ++t) {
+        if (state[t] == TriState::Invalid) continue;
+        const Ids v = s.ids(t);
+        for (int i = 0; i < 3; ++i) {
+            const std::int64_t a = v[i], b = v[(i + 1) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), t});
+        }
+    }
+    std::sort(uses.begin(), uses.end());
+    for (std::size_t i = 0; i < uses.size();) {
+        std::size_t j = i + 1;
+        while (j < uses.size() && uses[j].u == uses[i].u && uses[j].v == uses[i].v) ++j;
+        const auto n = static_cast<std::int64_t>(j - i);
+        Defect d;
+        d.tri[0] = static_cast<std::int64_t>(uses[i].tri);
+        d.vert = {uses[i].u, uses[i].v, -1};
+        d.value = n;
+        if (n == 1) {
+            d.kind = DefectKind::OpenEdge;
+            out.add(d);
+        }
+        if (n > 2) {
+            d.kind = DefectKind::NonManifoldEdge;
+            out.add(d);
+        }
+        i = j;
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Bounding-box tree (median split on box centres). Boxes are min/max of
+// input coordinates, so they are exact and closed: triangles that touch
+// have touching boxes, and the candidate pairs are a superset of the
+// meeting pairs.
+// ---------------------------------------------------------------------------
+struct Box {
+    std::array<double, 3> lo;
+    std::array<double, 3> hi;
+
+    void expand(const Box& b) {
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b.lo[k]);
+            hi[k] = std::max(hi[k], b.hi[k]);
+        }
+    }
+    bool overlaps(const Box& b) const {
+        for (int k = 0; k < 3; ++k)
+            if (hi[k] < b.lo[k] || b.hi[k] < lo[k]) return false;
+        return true;
+    }
+};
+
+Box triangle_box(const Surface& s, std::size_t t) {
+    const Ids v = s.ids(t);
+    Box b;
+    for (int k = 0; k < 3; ++k) b.lo[k] = b.hi[k] = s.point(v[0])[k];
+    for (int i = 1; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) {
+            b.lo[k] = std::min(b.lo[k], s.point(v[i])[k]);
+            b.hi[k] = std::max(b.hi[k], s.point(v[i])[k]);
+        }
+    return b;
+}
+
+class BoxTree {
+public:
+    // Indexes boxes[i] for each i in `ids`.
+    BoxTree(const std::vector<Box>& boxes, const std::vector<std::size_t>& ids) {
+        items_.reserve(ids.size());
+        for (const std::size_t i : ids) items_.push_back({boxes[i], i});
+        if (!items_.empty()) build(0, items_.size());
+    }
+
+    // Calls visit(i, j) once for every pair of indexed boxes that overlap.
+    template <class Visit>
+    void for_each_overlapping_pair(Visit&& visit) const {
+        if (!nodes_.empty()) pairs_within(0, visit);
+    }
+
+private:
+    static constexpr std::size_t kLeafSize = 4;
+
+    struct Item {
+        Box box;
+        std::size_t id;
+    };
+    struct Node {
+        Box box;
+        std::size_t begin, end;  // its items
+        std::size_t right;       // right child, 0 for a leaf; the left child follows
+                                 // its parent in nodes_
+    };
+
+    // Dual traversal: pairs inside a subtree are the pairs inside each child
+    // plus the pairs across them; a pair of subtrees is explored only while
+    // their boxes overlap. Recursion depth is at most twice the tree depth.
+    template <class Visit>
+    void pairs_within(std::size_t n, Visit& visit) const {
+        const Node& node = nodes_[n];
+        if (node.right == 0) {
+            for (std::size_t i = node.begin; i < node.end; ++i)
+                for (std::size_t j = i + 1; j < node.end; ++j) visit_if_overlap(i, j, visit);
+            return;
+        }
+        pairs_within(n + 1, visit);
+        pairs_within(node.right, visit);
+        pairs_across(n + 1, node.right, visit);
+    }
+
+    template <class Visit>
+    void pairs_across(std::size_t a, std::size_t b, Visit& visit) const {
+        const Node& na = nodes_[a];
+        const Node& nb = nodes_[b];
+        if (!na.box.overlaps(nb.box)) return;
+        if (na.right == 0 && nb.right == 0) {
+            for (std::size_t i = na.begin; i < na.end; ++i)
+                for (std::size_t j = nb.begin; j < nb.end; ++j) visit_if_overlap(i, j, visit);
+        } else if (nb.right == 0 || (na.right != 0 && na.end - na.begin >= nb.end - nb.begin)) {
+            pairs_across(a + 1, b, visit);  // open the larger inner node
+            pairs_across(na.right, b, visit);
+        } else {
+            pairs_across(a, b + 1, visit);
+            pairs_across(a, nb.right, visit);
+        }
+    }
+
+    template <class Visit>
+    void visit_if_overlap(std::size_t i, std::size_t j, Visit& visit) const {
+        if (items_[i].box.overlaps(items_[j].box)) visit(items_[i].id, items_[j].id);
+    }
+
+    // Median split of items [begin, end) along the longest axis of their box.
+    std::size_t build(std::size_t begin, std::size_t end) {
+        const std::size_t self = nodes_.size();
+        Box box = items_[begin].box;
+        for (std::size_t i = begin + 1; i < end; ++i) box.expand(items_[i].box);
+        nodes_.push_back({box, begin, end, 0});
+        if (end - begin <= kLeafSize) return self;
+        int axis = 0;
+        for (int k = 1; k < 3; ++k)
+            if (box.hi[k] - box.lo[k] > box.hi[axis] - box.lo[axis]) axis = k;
+        // Order by box centre (twice it: lo + hi), ties by id, so that the
+        // tree is a function of the input alone.
+        const auto before = [axis](const Item& a, const Item& b) {
+            const double ca = a.box.lo[axis] + a.box.hi[axis];
+            const double cb = b.box.lo[axis] + b.box.hi[axis];
+            return ca != cb ? ca < cb : a.id < b.id;
+        };
+        const std::size_t mid = begin + (end - begin) / 2;
+        std::nth_element(items_.begin() + static_cast<std::ptrdiff_t>(begin),
+                         items_.begin() + static_cast<std::ptrdiff_t>(mid),
+                         items_.begin() + static_cast<std::ptrdiff_t>(end), before);
+        build(begin, mid);
+        const std::size_t right = build(mid, end);
+        nodes_[self].right = right;
+        return self;
+    }
+
+    std::vector<Item> items_;
+    std::vector<Node> nodes_;
+};
+
+// ---------------------------------------------------------------------------
+// Pass 3: pairs of usable triangles meeting illegally.
+// ---------------------------------------------------------------------------
+
+// Moves the vertices a and b share to the front of both, in the same order;
+// returns how many they share. Ids within a triangle are distinct.
+int align_shared(Ids& a, Ids& b) {
+    int k = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = k; j < 3; ++j)
+            if (a[i] == b[j]) {
+                std::swap(a[k], a[i]);
+                std::swap(b[k], b[j]);
+                ++k;
+                break;
+            }
+    return k;
+}
+
+// Checks the pair (t, u), t < u; returns the defect when they meet illegally.
+bool pair_meets_illegally(const Surface& s, std::size_t t, std::size_t u, Defect& d) {
+    Ids a = s.ids(t);
+    Ids b = s.ids(u);
+    const int shared = align_shared(a, b);
+    if (shared == 3) return false;  // a duplicate, reported as such
+    const double* pa[3] = {s.point(a[0]), s.point(a[1]), s.point(a[2])};
+    const double* pb[3] = {s.point(b[0]), s.point(b[1]), s.point(b[2])};
+    if (!geom::triangles_meet_illegally(pa, pb, shared)) return false;
+    d = Defect{};
+    d.kind = DefectKind::Intersection;
+    d.tri = {static_cast<std::int64_t>(t), static_cast<std::int64_t>(u)};
+    for (int i = 0; i < shared; ++i) d.vert[i] = a[i];
+    return true;
+}
+
+// The pairs come in tree order; the listed ones must be the smallest
+// (t, u). A max-heap keeps the `cap` smallest seen so far.
+class SmallestPairs {
+public:
+    explicit SmallestPairs(std::size_t cap) : cap_(cap) {}
+
+    void add(const Defect& d) {
+        ++count_;
+        if (cap_ == 0) return;
+        if (heap_.size() == cap_) {
+            if (!by_pair(d, heap_.front())) return;
+            std::pop_heap(heap_.begin(), heap_.end(), by_pair);
+            heap_.pop_back();
+        }
+        heap_.push_back(d);
+        std::push_heap(heap_.begin(), heap_.end(), by_pair);
+    }
+
+    void flush_to(Collector& out) {
+        std::sort_heap(heap_.begin(), heap_.end(), by_pair);
+        for (const Defect& d : heap_) out.add(d);
+        out.add_unlisted(DefectKind::Intersection,
+                         count_ - static_cast<std::int64_t>(heap_.size()));
+    }
+
+private:
+    static bool by_pair(const Defect& a, const Defect& b) { return a.tri < b.tri; }
+
+    std::size_t cap_;
+    std::vector<Defect> heap_;
+    std::int64_t count_ = 0;
+};
+
+void find_intersections(const Surface& s, const std::vector<TriState>& state, Collector& out) {
+    std::vector<Box> boxes(s.triangle_count);
+    std::vector<std::size_t> usable;
+    for (std::size_t t = 0; t < s.triangle_count; ++t)
+        if (state[t] == TriState::Usable) {
+            boxes[t] = triangle_box(s, t);
+            usable.push_back(t);
+        }
+    const BoxTree tree(boxes, usable);
+    SmallestPairs found(out.cap());
+    tree.for_each_overlapping_pair([&](std::size_t t, std::size_t u) {
+        Defect d;
+        if (pair_meets_illegally(s, std::min(t, u), std::max(t, u), d)) found.add(d);
+    });
+    found.flush_to(out);
+}
+
+// ---------------------------------------------------------------------------
+// Messages.
+// ---------------------------------------------------------------------------
+std::string id_list(const Ids& v, int base) {
+    std::string r;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        if (i > 0) r += ", ";
+        r += std::to_string(v[i] + base);
+    }
+    return r;
+}
+
+std::string out_of_range_message(const Defect& d, int base) {
+    std::string bad;
+    int n = 0;
+    for (const std::int64_t id : d.vert)
+        if (id < 0 || id >= d.value) bad += (n++ > 0 ? ", " : "") + std::to_string(id + base);
+    const std::string range = d.value > 0 ? "valid ids are " + std::to_string(base) + " to " +
+                                                std::to_string(d.value - 1 + base)
+                                          : "there are no points";
+    return "triangle " + std::to_string(d.tri[0] + base) +
+           (n > 1 ? " uses vertex ids " : " uses vertex id ") + bad + ", out of range (" + range +
+           ")";
+}
+
+std::string edge_message(const Defect& d, int base, const char* what) {
+    const std::int64_t n = d.value;
+    const std::string tri = std::to_string(d.tri[0] + base);
+    return "edge " + std::to_string(d.vert[0] + base) + "-" + std::to_string(d.vert[1] + base) +
+           " is " + what + ": used by " +
+           (n == 1 ? "1 triangle (triangle " + tri + ")"
+                   : std::to_string(n) + " triangles (first: triangle " + tri + ")");
+}
+
+const char* kind_noun(DefectKind kind, bool plural) {
+    switch (kind) {
+        case DefectKind::IdOutOfRange:
+            return plural ? "triangles with ids out of range" : "triangle with an id out of range";
+        case DefectKind::RepeatedId:
+            return plural ? "triangles with a repeated id" : "triangle with a repeated id";
+        case DefectKind::ZeroArea: return plural ? "zero-area triangles" : "zero-area triangle";
+        case DefectKind::DuplicateTriangle:
+            return plural ? "duplicate triangles" : "duplicate triangle";
+        case DefectKind::Intersection:
+            return plural ? "intersecting triangle pairs" : "intersecting triangle pair";
+        case DefectKind::OpenEdge: return plural ? "open edges" : "open edge";
+        case DefectKind::NonManifoldEdge:
+            return plural ? "non-manifold edges" : "non-manifold edge";
+    }
+    return "defects";
+}
+
+}  // namespace
+
+bool is_error(DefectKind kind) {
+    return kind != DefectKind::OpenEdge && kind != DefectKind::NonManifoldEdge;
+}
+
+std::int64_t SurfaceCheckResult::error_count() const {
+    std::int64_t n = 0;
+    for (std::size_t k = 0; k < kDefectKindCount; ++k)
+        if (is_error(static_cast<DefectKind>(k))) n += counts[k];
+    return n;
+}
+
+SurfaceCheckResult check_surface(const double* xyz, std::int64_t point_count,
+                                 const std::int64_t* tris, std::int64_t triangle_count,
+                                 const SurfaceCheckOptions& options) {
+    const Surface s{xyz, std::max<std::int64_t>(point_count, 0), tris,
+                    static_cast<std::size_t>(std::max<std::int64_t>(triangle_count, 0))};
+    Collector out(options.max_listed_per_kind);
+    std::vector<TriState> state(s.triangle_count);
+    for (std::size_t t = 0; t < s.triangle_count; ++t) state[t] = check_triangle(s, t, out);
+    find_duplicates(s, state, out);
+    find_intersections(s, state, out);
+    if (options.report_edges) report_edges(s, state, out);
+    return out.finish();
+}
+
+std::string describe(const Defect& d, int base) {
+    const std::string t0 = std::to_string(d.tri[0] + base);
+    const std::string t1 = std::to_string(d.tri[1] + base);
+    switch (d.kind) {
+        case DefectKind::IdOutOfRange: return out_of_range_message(d, base);
+        case DefectKind::RepeatedId:
+            return "triangle " + t0 + " repeats a vertex id (vertices " + id_list(d.vert, base) +
+                   ")";
+        case DefectKind::ZeroArea:
+            return "triangle " + t0 + " has zero area (vertices " + id_list(d.vert, base) +
+                   " are collinear)";
+        case DefectKind::DuplicateTriangle:
+            return "triangles " + t0 + " and " + t1 + " are the same triangle (vertices " +
+                   id_list(d.vert, base) + ")";
+        case DefectKind::Intersection:
+            return "triangles " + t0 + " and " + t1 +
+                   " intersect (not in a shared vertex or edge)";
+        case DefectKind::OpenEdge: return edge_message(d, base, "open");
+        case DefectKind::NonManifoldEdge: return edge_message(d, base, "non-manifold");
+    }
+    return "unknown defect";
+}
+
+std::string summarize(const SurfaceCheckResult& r, int base) {
+    std::string counts;
+    for (std::size_t k = 0; k < kDefectKindCount; ++k) {
+        const auto kind = static_cast<DefectKind>(k);
+        if (!is_error(kind) || r.counts[k] == 0) continue;
+        counts += (counts.empty() ? "" : ", ") + std::to_string(r.counts[k]) + " " +
+                  kind_noun(kind, r.counts[k] > 1);
+    }
+    if (counts.empty()) return "no defect";
+    const std::int64_t n = r.error_count();
+    std::string out = std::to_string(n) + (n == 1 ? " error: " : " errors: ") + counts;
+    const auto first = std::find_if(r.defects.begin(), r.defects.end(),
+                                    [](const Defect& d) { return is_error(d.kind); });
+    if (first != r.defects.end()) out += "; first: " + describe(*first, base);  // none if cap 0
+    return out;
+}
+
+}  // namespace cbr::recover
