@@ -691,11 +691,20 @@ TEST_CASE("incircle_coplanar_sos: random coplanar points and mixed magnitudes") 
         for (auto& q : p) q = {rng.pick(xy), rng.pick(xy), 1e-30};
         check_incircle(p[0], p[1], p[2], p[3], rng);
     }
+    const std::vector<std::array<int, 2>> circle = {{5, 0}, {3, 4}, {4, 3}, {0, 5}, {-3, 4},
+                                                    {-5, 0}, {-4, -3}, {0, -5}, {4, -3}};
+    // A few ulps off a circle, within the plane y = 0.5.
+    for (int n = 0; n < 300; ++n) {
+        Point p[4];
+        for (auto& q : p) {
+            const auto& c = rng.pick(circle);
+            q = {double(c[0]), 0.5, double(c[1])};
+        }
+        check_incircle(p[0], p[1], p[2], nudged(p[3], 2 * rng.integer(0, 1), rng.integer(-3, 3)), rng);
+    }
     // An integer circle, scaled, around a huge offset.
     for (int n = 0; n < 200; ++n) {
         Point p[4];
-        const std::vector<std::array<int, 2>> circle = {{5, 0}, {3, 4}, {4, 3}, {0, 5}, {-3, 4},
-                                                        {-5, 0}, {-4, -3}, {0, -5}, {4, -3}};
         for (auto& q : p) {
             const auto& c = rng.pick(circle);
             q = {1e20 + c[0] * 30000.0, 1e20, 1e20 + c[1] * 30000.0};  // rounded: near-cocircular

@@ -227,3 +227,5 @@ inline int insphere_sos(const double* a, const double* b, const double* c, const
 }
 
 }  // namespace cbr::geom
+
+#undef CBR_GEOM_COLD
