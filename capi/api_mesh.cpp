@@ -130,10 +130,12 @@ CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh* mesh) {
 CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
     return guarded(mesh, "cbr_mesh_get_points", [&] {
         require_mesh(mesh);
-        const auto& coords = mesh->delaunay.mesh().coordinates();
-        if (coords.empty()) return CBR_OK;
+        const cbr::delaunay::Delaunay& d = mesh->delaunay;
+        const std::size_t n = d.mesh().vertex_count();
+        if (n == 0) return CBR_OK;
         require(xyz_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "xyz_out is NULL");
-        std::memcpy(xyz_out, coords.data(), coords.size() * sizeof(double));
+        for (cbr::mesh::VertexId v = 0; v < n; ++v)
+            std::memcpy(xyz_out + 3 * std::size_t{d.external_id(v)}, d.mesh().point(v), 3 * sizeof(double));
         return CBR_OK;
     });
 }
@@ -141,14 +143,15 @@ CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
 CBR_API int cbr_mesh_get_tets(const cbr_mesh* mesh, int64_t* tets_out) {
     return guarded(mesh, "cbr_mesh_get_tets", [&] {
         require_mesh(mesh);
-        const cbr::mesh::TetMesh& m = mesh->delaunay.mesh();
+        const cbr::delaunay::Delaunay& d = mesh->delaunay;
+        const cbr::mesh::TetMesh& m = d.mesh();
         const std::int64_t base = mesh->index_base;
         std::int64_t* out = tets_out;
         for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
             if (m.is_free(t) || m.is_ghost(t)) continue;
             require(tets_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "tets_out is NULL");
             const cbr::mesh::VertexId* v = m.vertices(t);
-            for (int i = 0; i < 4; ++i) *out++ = std::int64_t{v[i]} + base;
+            for (int i = 0; i < 4; ++i) *out++ = std::int64_t{d.external_id(v[i])} + base;
         }
         return CBR_OK;
     });

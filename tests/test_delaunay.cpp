@@ -21,11 +21,13 @@ void require_delaunay(const Delaunay& d) {
     REQUIRE(report.ok());
 }
 
-std::vector<std::int64_t> finite_tets(const TetMesh& m) {
+// Finite tetrahedra in the callers' (external) ids.
+std::vector<std::int64_t> finite_tets(const Delaunay& d) {
+    const TetMesh& m = d.mesh();
     std::vector<std::int64_t> out;
     for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t)
         if (!m.is_free(t) && !m.is_ghost(t))
-            for (int i = 0; i < 4; ++i) out.push_back(m.vertex(t, i));
+            for (int i = 0; i < 4; ++i) out.push_back(d.external_id(m.vertex(t, i)));
     return out;
 }
 
@@ -117,7 +119,7 @@ TEST_CASE("the triangulation depends only on the point set") {
     const std::size_t n = xyz.size() / 3;
     Delaunay one;
     build(one, xyz);
-    const auto reference = cbr::test::canonical(finite_tets(one.mesh()));
+    const auto reference = cbr::test::canonical(finite_tets(one));
 
     SUBCASE("several insert calls versus one") {
         Delaunay several;
@@ -126,7 +128,7 @@ TEST_CASE("the triangulation depends only on the point set") {
             REQUIRE(several.insert_points(xyz.data() + 3 * first, count).ok);
         }
         require_delaunay(several);
-        CHECK(cbr::test::canonical(finite_tets(several.mesh())) == reference);
+        CHECK(cbr::test::canonical(finite_tets(several)) == reference);
     }
     SUBCASE("another input order") {
         std::vector<std::size_t> perm(n);
@@ -137,7 +139,7 @@ TEST_CASE("the triangulation depends only on the point set") {
         Delaunay other;
         build(other, shuffled);
         // Map ids back to the original numbering before comparing.
-        std::vector<std::int64_t> tets = finite_tets(other.mesh());
+        std::vector<std::int64_t> tets = finite_tets(other);
         for (auto& v : tets) v = static_cast<std::int64_t>(perm[static_cast<std::size_t>(v)]);
         CHECK(cbr::test::canonical(tets) == reference);
     }
@@ -177,14 +179,13 @@ TEST_CASE("nearly equal large coordinates with tiny offsets") {
 TEST_CASE("duplicate points are reported and the mesh is left exactly as it was") {
     Delaunay d;
     build(d, cbr::test::random_points(300, 5));
-    const auto before = finite_tets(d.mesh());
+    const auto before = finite_tets(d);
     const auto coords_before = d.mesh().coordinates();
 
     SUBCASE("a duplicate of an existing point") {
         std::vector<double> batch = cbr::test::random_points(50, 6);
-        batch[3 * 20 + 0] = coords_before[3 * 17 + 0];
-        batch[3 * 20 + 1] = coords_before[3 * 17 + 1];
-        batch[3 * 20 + 2] = coords_before[3 * 17 + 2];
+        const double* p17 = d.mesh().point(d.internal_id(17));  // the caller's point 17
+        for (int k = 0; k < 3; ++k) batch[3 * 20 + k] = p17[k];
         const auto outcome = d.insert_points(batch.data(), 50);
         CHECK_FALSE(outcome.ok);
         CHECK(outcome.duplicate_first == 17);
@@ -199,8 +200,19 @@ TEST_CASE("duplicate points are reported and the mesh is left exactly as it was"
         CHECK(outcome.duplicate_second == 340);
     }
     CHECK(d.mesh().coordinates() == coords_before);
-    CHECK(finite_tets(d.mesh()) == before);  // same tetrahedra in the same order
+    CHECK(finite_tets(d) == before);  // same tetrahedra in the same order
     require_delaunay(d);
+}
+
+TEST_CASE("internal and external ids are inverse permutations") {
+    Delaunay d;
+    const auto xyz = cbr::test::random_points(3000, 21);
+    build(d, xyz);
+    for (cbr::mesh::VertexId e = 0; e < 3000; ++e) {
+        REQUIRE(d.external_id(d.internal_id(e)) == e);
+        const double* p = d.mesh().point(d.internal_id(e));
+        REQUIRE((p[0] == xyz[3 * e] && p[1] == xyz[3 * e + 1] && p[2] == xyz[3 * e + 2]));
+    }
 }
 
 TEST_CASE("duplicates before the first tetrahedron exists") {

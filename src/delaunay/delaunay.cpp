@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 #include "delaunay/spatial_sort.hpp"
 
@@ -50,20 +51,48 @@ InsertOutcome Delaunay::insert_points(const double* xyz, std::size_t count) {
     const std::size_t before = mesh_.vertex_count();
     InsertOutcome outcome;
     try {
-        const VertexId first = mesh_.add_points(xyz, count);
-        outcome = insert_batch(first, mesh_.vertex_count());
+        store_batch(xyz, count);
+        outcome = insert_batch(static_cast<VertexId>(before), mesh_.vertex_count());
     } catch (...) {
-        mesh_.truncate_vertices(before);
+        discard_vertices_from(before);
         restore_previous();
         throw;
     }
     if (!outcome.ok) {
-        mesh_.truncate_vertices(before);
+        const VertexId a = external_of_[outcome.duplicate_first], b = external_of_[outcome.duplicate_second];
+        outcome.duplicate_first = std::min(a, b);
+        outcome.duplicate_second = std::max(a, b);
+        discard_vertices_from(before);
         restore_previous();
         return outcome;
     }
     if (count > 0) batch_ends_.push_back(mesh_.vertex_count());
     return outcome;
+}
+
+void Delaunay::store_batch(const double* xyz, std::size_t count) {
+    const std::size_t before = mesh_.vertex_count();
+    if (count > mesh::kMaxVertices - before) throw std::length_error("too many points");
+    std::vector<VertexId> order(count);
+    std::iota(order.begin(), order.end(), VertexId{0});
+    brio_sort(xyz, order, 0xC0FFEEull + count);
+    std::vector<double> sorted(3 * count);
+    for (std::size_t k = 0; k < count; ++k)
+        for (int c = 0; c < 3; ++c) sorted[3 * k + c] = xyz[3 * std::size_t{order[k]} + c];
+    external_of_.reserve(before + count);
+    internal_of_.resize(before + count);
+    mesh_.add_points(sorted.data(), count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const auto external = static_cast<VertexId>(before + order[k]);
+        external_of_.push_back(external);
+        internal_of_[external] = static_cast<VertexId>(before + k);
+    }
+}
+
+void Delaunay::discard_vertices_from(std::size_t count) {
+    mesh_.truncate_vertices(count);
+    if (external_of_.size() > count) external_of_.resize(count);
+    if (internal_of_.size() > count) internal_of_.resize(count);
 }
 
 bool Delaunay::start_triangulation(std::size_t n, std::vector<VertexId>& rest, InsertOutcome& outcome) {
@@ -105,9 +134,9 @@ InsertOutcome Delaunay::insert_batch(VertexId first, std::size_t end) {
         std::iota(order.begin(), order.end(), first);
     }
     mesh_.reserve_tets(kTetsPerPointReserve * end + 64);
-    // The seed depends on the batch only, so a replay draws the same order.
+    // The seed depends on the batch only, so a replay draws the same walk.
     kernel_.set_seed(0x9E3779B97F4A7C15ull ^ (std::uint64_t{first} << 20) ^ order.size());
-    brio_sort(mesh_.coordinates().data(), order, 0xC0FFEEull + order.size());
+    // Internal ids already follow the BRIO order (store_batch).
     for (VertexId v : order) {
         const VertexId twin = kernel_.insert(v);
         if (twin != kGhostVertex) return {false, std::min(v, twin), std::max(v, twin)};

@@ -69,9 +69,14 @@ std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z, i
     return key;
 }
 
-void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* last) {
+namespace {
+
+// Hilbert keys of the points `ids`, over their common bounding box, in one
+// sequential pass over the ids.
+std::vector<KeyedId> hilbert_keys(const double* coords, const mesh::VertexId* first, const mesh::VertexId* last) {
     const std::size_t n = static_cast<std::size_t>(last - first);
-    if (n < 2) return;
+    std::vector<KeyedId> items(n);
+    if (n == 0) return items;
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) lo[k] = hi[k] = coords[3 * std::size_t{*first} + k];
     for (const mesh::VertexId* v = first; v != last; ++v)
@@ -85,35 +90,47 @@ void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* l
     const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
     const double cells = double((1u << kHilbertBits) - 1);
     const double scale = extent > 0 ? cells / extent : 0.0;
-
-    std::vector<KeyedId> items(n);
     for (std::size_t i = 0; i < n; ++i) {
         const double* p = coords + 3 * std::size_t{first[i]};
         std::uint32_t q[3];
-        for (int k = 0; k < 3; ++k) {
-            const double s = std::min(cells, std::max(0.0, (p[k] - lo[k]) * scale));
-            q[k] = static_cast<std::uint32_t>(s);
-        }
+        for (int k = 0; k < 3; ++k) q[k] = static_cast<std::uint32_t>(std::min(cells, std::max(0.0, (p[k] - lo[k]) * scale)));
         items[i] = {hilbert_index(q[0], q[1], q[2], kHilbertBits), first[i]};
     }
+    return items;
+}
+
+}  // namespace
+
+void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* last) {
+    std::vector<KeyedId> items = hilbert_keys(coords, first, last);
+    if (items.size() < 2) return;
     radix_sort(items, 3 * kHilbertBits);
-    for (std::size_t i = 0; i < n; ++i) first[i] = items[i].id;
+    for (std::size_t i = 0; i < items.size(); ++i) first[i] = items[i].id;
 }
 
 void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint64_t seed) {
+    // Keys first, in the given order (sequential memory access), then the
+    // shuffle and the rounds move (key, id) pairs only: no coordinate is
+    // read in random order.
+    std::vector<KeyedId> items = hilbert_keys(coords, ids.data(), ids.data() + ids.size());
     // Fisher-Yates with our own generator: the order is the same everywhere.
     std::uint64_t state = seed;
-    for (std::size_t i = ids.size(); i > 1; --i) {
+    for (std::size_t i = items.size(); i > 1; --i) {
         const std::size_t j = static_cast<std::size_t>(splitmix64(state) % i);
-        std::swap(ids[i - 1], ids[j]);
+        std::swap(items[i - 1], items[j]);
     }
-    // Rounds: [0, r0) [r0, r1) ... each round kRoundDivisor times the last.
-    std::size_t end = ids.size();
+    // Rounds: [0, r0) [r0, r1) ... each round kRoundDivisor times the last,
+    // each sorted along the curve.
+    std::size_t end = items.size();
+    std::vector<KeyedId> round;
     while (end > 0) {
         const std::size_t begin = end > kSmallestRound ? end / kRoundDivisor : 0;
-        hilbert_sort(coords, ids.data() + begin, ids.data() + end);
+        round.assign(items.begin() + static_cast<std::ptrdiff_t>(begin), items.begin() + static_cast<std::ptrdiff_t>(end));
+        if (round.size() > 1) radix_sort(round, 3 * kHilbertBits);
+        std::copy(round.begin(), round.end(), items.begin() + static_cast<std::ptrdiff_t>(begin));
         end = begin;
     }
+    for (std::size_t i = 0; i < items.size(); ++i) ids[i] = items[i].id;
 }
 
 }  // namespace cbr::delaunay
