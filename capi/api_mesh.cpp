@@ -2,6 +2,7 @@
 // core, inside the exception firewall (handle.hpp).
 #include <cbr/cbr.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -77,6 +78,11 @@ CBR_API int cbr_mesh_set_param(cbr_mesh* mesh, int key, double value) {
                         "CBR_PARAM_INDEX_BASE must be 0 or 1");
                 mesh->index_base = static_cast<int>(value);
                 return CBR_OK;
+            case CBR_PARAM_KEEP_EXTERIOR:
+                require(value == 0.0 || value == 1.0, CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_KEEP_EXTERIOR must be 0 or 1");
+                mesh->keep_exterior = value != 0.0;
+                return CBR_OK;
             default:
                 throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
@@ -89,6 +95,7 @@ CBR_API int cbr_mesh_get_param(const cbr_mesh* mesh, int key, double* value) {
         require(value != nullptr, CBR_ERR_INVALID_ARGUMENT, "value is NULL");
         switch (key) {
             case CBR_PARAM_INDEX_BASE: *value = mesh->index_base; return CBR_OK;
+            case CBR_PARAM_KEEP_EXTERIOR: *value = mesh->keep_exterior ? 1.0 : 0.0; return CBR_OK;
             default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
     });
@@ -100,12 +107,16 @@ CBR_API int cbr_mesh_insert_points(cbr_mesh* mesh, int64_t count, const double* 
         require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
         if (count == 0) return CBR_OK;
         require(xyz != nullptr, CBR_ERR_INVALID_ARGUMENT, "xyz is NULL");
+        require(!mesh->recovery.done, CBR_ERR_INVALID_ARGUMENT,
+                "points cannot be added after cbr_mesh_recover_faces (create a new mesh)");
         const auto existing = static_cast<std::int64_t>(mesh->delaunay.mesh().vertex_count());
         require(count <= static_cast<std::int64_t>(cbr::mesh::kMaxVertices) - existing, CBR_ERR_INVALID_ARGUMENT,
                 "too many points: a mesh holds at most 2^31 - 2");
         const std::int64_t first_id = existing + mesh->index_base;
         check_coordinates(xyz, count, first_id);
+        const auto start = std::chrono::steady_clock::now();
         const auto outcome = mesh->delaunay.insert_points(xyz, static_cast<std::size_t>(count));
+        mesh->delaunay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!outcome.ok) {
             const double* p = xyz + 3 * (std::int64_t{outcome.duplicate_second} - existing);
             throw ApiError{CBR_ERR_INVALID_INPUT,
@@ -124,7 +135,10 @@ CBR_API int64_t cbr_mesh_point_count(const cbr_mesh* mesh) {
 
 CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh* mesh) {
     if (!mesh) return -1;
-    return static_cast<int64_t>(mesh->delaunay.finite_tet_count());
+    if (!mesh->recovery.done) return static_cast<int64_t>(mesh->delaunay.finite_tet_count());
+    int64_t n = 0;
+    for (cbr::mesh::TetId t = 0; t < mesh->delaunay.mesh().slot_count(); ++t) n += cbr::capi::is_returned(*mesh, t);
+    return n;
 }
 
 CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
@@ -148,7 +162,7 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh* mesh, int64_t* tets_out) {
         const std::int64_t base = mesh->index_base;
         std::int64_t* out = tets_out;
         for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
-            if (m.is_free(t) || m.is_ghost(t)) continue;
+            if (!cbr::capi::is_returned(*mesh, t)) continue;
             require(tets_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "tets_out is NULL");
             const cbr::mesh::VertexId* v = m.vertices(t);
             for (int i = 0; i < 4; ++i) *out++ = std::int64_t{d.external_id(v[i])} + base;

@@ -10,10 +10,34 @@
 
 #include "delaunay/delaunay.hpp"
 #include "mesh/errors.hpp"
+#include "recover/constraint_faces.hpp"
+#include "recover/recovery.hpp"
+#include "recover/regions.hpp"
+#include "recover/surface_check.hpp"
+
+namespace cbr::capi {
+
+// What cbr_mesh_recover_faces leaves behind.
+struct RecoveryState {
+    bool done = false;
+    cbr::recover::ConstraintFaces faces;
+    cbr::recover::RegionMap regions;
+    cbr::recover::RecoveryStats stats;
+    double seconds = 0;
+    std::vector<cbr::mesh::VertexId> steiner;  // internal ids
+};
+
+}  // namespace cbr::capi
 
 struct cbr_mesh {
     cbr::delaunay::Delaunay delaunay;
     int index_base = 0;
+    bool keep_exterior = false;
+    double delaunay_seconds = 0;
+    cbr::capi::RecoveryState recovery;
+    // Report of the last cbr_mesh_check_faces that ran its checks (whatever
+    // it found); ids 0-based. A call refused on its arguments keeps it.
+    cbr::recover::SurfaceCheckResult last_check;
     // Message of the last failed call; mutable so that const queries can
     // report their own failures.
     mutable std::string last_error;
@@ -60,6 +84,15 @@ int guarded(const cbr_mesh* mesh, const char* function, Body&& body) noexcept {
 
 inline void require(bool condition, int status, const std::string& message) {
     if (!condition) throw ApiError{status, message};
+}
+
+// The tetrahedra the getters return: finite ones; after recovery only those
+// of bounded regions, unless CBR_PARAM_KEEP_EXTERIOR is set.
+inline bool is_returned(const cbr_mesh& h, cbr::mesh::TetId t) {
+    const cbr::mesh::TetMesh& m = h.delaunay.mesh();
+    if (m.is_free(t) || m.is_ghost(t)) return false;
+    if (!h.recovery.done || h.keep_exterior) return true;
+    return h.recovery.regions.of_tet[t] > 0;
 }
 
 }  // namespace cbr::capi

@@ -174,3 +174,186 @@ TEST_CASE("two handles in two threads do not interfere") {
     CHECK(got_a == ref_a);  // bit-identical: deterministic and independent
     CHECK(got_b == ref_b);
 }
+
+// ---------------------------------------------------------------------------
+// Surface checks: cbr_mesh_check_faces and the defect report.
+// ---------------------------------------------------------------------------
+namespace {
+
+// A tetrahedron (points 0-3, outward faces), then extra points: 4 on the
+// line through 0 and 1, 5 and 6 piercing face 0-1-2 (z = 0) through its
+// interior, 7 off the x axis for a third page on edge 0-1.
+const std::vector<double> kCheckPoints = {0,   0,   0,  2,   0,   0, 0,   2,  0, 0, 0, 2,
+                                          3,   0,   0,  0.5, 0.5, -1, 0.5, 0.5, 1, 1, -1, -1};
+const std::vector<std::int64_t> kTetFaces = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+
+std::vector<std::int64_t> shifted(std::vector<std::int64_t> ids, std::int64_t by) {
+    for (std::int64_t& v : ids) v += by;
+    return ids;
+}
+
+struct CheckHandle : Handle {
+    explicit CheckHandle(int base = 0) {
+        REQUIRE(cbr_mesh_set_param(m, CBR_PARAM_INDEX_BASE, base) == CBR_OK);
+        REQUIRE(cbr_mesh_insert_points(m, 8, kCheckPoints.data()) == CBR_OK);
+    }
+    int check(const std::vector<std::int64_t>& tris) const {
+        return cbr_mesh_check_faces(m, static_cast<std::int64_t>(tris.size() / 3), tris.data());
+    }
+    std::int64_t count(int kind) const { return cbr_mesh_defect_count(m, kind); }
+    std::int64_t listed(int kind) const { return cbr_mesh_defect_listed(m, kind); }
+    // {triangle, triangle, point, point, point} of the i-th listed defect.
+    std::vector<std::int64_t> defect(int kind, std::int64_t i) const {
+        std::vector<std::int64_t> t(2, -7), p(3, -7);
+        REQUIRE(cbr_mesh_get_defect(m, kind, i, t.data(), p.data()) == CBR_OK);
+        return {t[0], t[1], p[0], p[1], p[2]};
+    }
+};
+
+const int kAllDefectKinds[] = {CBR_DEFECT_ID_OUT_OF_RANGE, CBR_DEFECT_REPEATED_ID,   CBR_DEFECT_ZERO_AREA,
+                               CBR_DEFECT_DUPLICATE_TRIANGLE, CBR_DEFECT_INTERSECTION, CBR_DEFECT_OPEN_EDGE,
+                               CBR_DEFECT_NONMANIFOLD_EDGE};
+
+}  // namespace
+
+TEST_CASE("check faces: a closed tetrahedron has no defect") {
+    CheckHandle h;
+    for (int kind : kAllDefectKinds) CHECK(h.count(kind) == 0);  // before any check
+    CHECK(h.check(kTetFaces) == CBR_OK);
+    for (int kind : kAllDefectKinds) {
+        CHECK(h.count(kind) == 0);
+        CHECK(h.listed(kind) == 0);
+    }
+    CHECK(cbr_mesh_check_faces(h.m, 0, nullptr) == CBR_OK);  // nothing to check
+}
+
+TEST_CASE("check faces: each error kind, with its message and its ids") {
+    CheckHandle h;
+    SUBCASE("id out of range") {
+        CHECK(h.check({0, 1, 2, 0, 1, 8}) == CBR_ERR_INVALID_INPUT);
+        CHECK(contains(h.error(), "triangle 1 uses vertex id 8, out of range (valid ids are 0 to 7)"));
+        CHECK(h.count(CBR_DEFECT_ID_OUT_OF_RANGE) == 1);
+        CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, 0) == std::vector<std::int64_t>{1, -1, 0, 1, 8});
+    }
+    SUBCASE("repeated id") {
+        CHECK(h.check({0, 1, 2, 3, 1, 3}) == CBR_ERR_INVALID_INPUT);
+        CHECK(contains(h.error(), "triangle 1 repeats a vertex id (vertices 3, 1, 3)"));
+        CHECK(h.defect(CBR_DEFECT_REPEATED_ID, 0) == std::vector<std::int64_t>{1, -1, 3, 1, 3});
+    }
+    SUBCASE("zero area") {
+        CHECK(h.check({0, 1, 4, 0, 2, 3}) == CBR_ERR_INVALID_INPUT);
+        CHECK(contains(h.error(), "triangle 0 has zero area (vertices 0, 1, 4 are collinear)"));
+        CHECK(h.defect(CBR_DEFECT_ZERO_AREA, 0) == std::vector<std::int64_t>{0, -1, 0, 1, 4});
+    }
+    SUBCASE("duplicate triangle") {
+        auto tris = kTetFaces;
+        tris.insert(tris.end(), {1, 3, 2});
+        CHECK(h.check(tris) == CBR_ERR_INVALID_INPUT);
+        CHECK(contains(h.error(), "triangles 3 and 4 are the same triangle"));
+        CHECK(h.defect(CBR_DEFECT_DUPLICATE_TRIANGLE, 0) == std::vector<std::int64_t>{3, 4, 1, 3, 2});
+    }
+    SUBCASE("intersection") {
+        CHECK(h.check({0, 1, 2, 5, 6, 3}) == CBR_ERR_INVALID_INPUT);
+        CHECK(contains(h.error(), "triangles 0 and 1 intersect (not in a shared vertex or edge)"));
+        CHECK(h.count(CBR_DEFECT_INTERSECTION) == 1);
+        CHECK(h.defect(CBR_DEFECT_INTERSECTION, 0) == std::vector<std::int64_t>{0, 1, -1, -1, -1});
+    }
+    CHECK(contains(h.error(), "cbr_mesh_check_faces: 1 error: "));
+}
+
+TEST_CASE("check faces: open and non-manifold edges are information, not errors") {
+    CheckHandle h;
+    SUBCASE("open") {
+        CHECK(h.check({0, 2, 1, 0, 1, 3, 0, 3, 2}) == CBR_OK);  // the tetrahedron less a face
+        CHECK(h.count(CBR_DEFECT_OPEN_EDGE) == 3);
+        CHECK(h.listed(CBR_DEFECT_OPEN_EDGE) == 3);
+        CHECK(h.defect(CBR_DEFECT_OPEN_EDGE, 0) == std::vector<std::int64_t>{0, -1, 1, 2, -1});
+        CHECK(h.defect(CBR_DEFECT_OPEN_EDGE, 2) == std::vector<std::int64_t>{2, -1, 2, 3, -1});
+    }
+    SUBCASE("non-manifold") {
+        CHECK(h.check({0, 1, 2, 0, 1, 3, 0, 1, 7}) == CBR_OK);  // three pages on edge 0-1
+        CHECK(h.count(CBR_DEFECT_NONMANIFOLD_EDGE) == 1);
+        CHECK(h.defect(CBR_DEFECT_NONMANIFOLD_EDGE, 0) == std::vector<std::int64_t>{0, -1, 0, 1, -1});
+        CHECK(h.count(CBR_DEFECT_OPEN_EDGE) == 6);
+    }
+    for (int kind : kAllDefectKinds)
+        if (kind != CBR_DEFECT_OPEN_EDGE && kind != CBR_DEFECT_NONMANIFOLD_EDGE) CHECK(h.count(kind) == 0);
+}
+
+TEST_CASE("check faces: index base 1 in, in messages and out") {
+    CheckHandle h(1);
+    CHECK(h.check(shifted(kTetFaces, 1)) == CBR_OK);
+    CHECK(h.check({1, 2, 3, 1, 2, 0, 6, 7, 4}) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "triangle 2 uses vertex id 0, out of range (valid ids are 1 to 8)"));
+    CHECK(contains(h.error(), "then: triangles 1 and 3 intersect"));
+    CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, 0) == std::vector<std::int64_t>{2, -1, 1, 2, 0});
+    CHECK(h.defect(CBR_DEFECT_INTERSECTION, 0) == std::vector<std::int64_t>{1, 3, -1, -1, -1});
+    CHECK(h.defect(CBR_DEFECT_OPEN_EDGE, 0) == std::vector<std::int64_t>{1, -1, 1, 2, -1});
+    // The report is kept 0-based: switching the base changes what is read.
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_INDEX_BASE, 0) == CBR_OK);
+    CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, 0) == std::vector<std::int64_t>{1, -1, 0, 1, -1});
+}
+
+TEST_CASE("check faces: counts are complete, listing stops at 20") {
+    CheckHandle h;
+    std::vector<std::int64_t> tris;
+    for (int t = 0; t < 30; ++t) tris.insert(tris.end(), {0, 1, 100 + t});
+    CHECK(h.check(tris) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "30 errors: 30 triangles with ids out of range"));
+    CHECK(h.count(CBR_DEFECT_ID_OUT_OF_RANGE) == 30);
+    CHECK(h.listed(CBR_DEFECT_ID_OUT_OF_RANGE) == 20);
+    for (std::int64_t i = 0; i < 20; ++i) CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, i)[0] == i);
+    CHECK(cbr_mesh_get_defect(h.m, CBR_DEFECT_ID_OUT_OF_RANGE, 20, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "defect index 20 is out of range (20 listed of this kind)"));
+    CHECK(cbr_mesh_get_defect(h.m, CBR_DEFECT_ID_OUT_OF_RANGE, 3, nullptr, nullptr) == CBR_OK);
+}
+
+TEST_CASE("check faces: bad arguments are refused and leave the report as it was") {
+    CheckHandle h;
+    REQUIRE(h.check({0, 1, 2, 0, 1, 9}) == CBR_ERR_INVALID_INPUT);
+    auto unchanged = [&] {
+        CHECK(h.count(CBR_DEFECT_ID_OUT_OF_RANGE) == 1);
+        CHECK(h.count(CBR_DEFECT_OPEN_EDGE) == 3);  // the invalid triangle has no edges
+    };
+    CHECK(cbr_mesh_check_faces(h.m, 2, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "tris is NULL"));
+    unchanged();
+    CHECK(cbr_mesh_check_faces(h.m, -1, kTetFaces.data()) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "count is negative (-1)"));
+    unchanged();
+    CHECK(cbr_mesh_check_faces(nullptr, 4, kTetFaces.data()) == CBR_ERR_INVALID_ARGUMENT);
+    for (int kind : {0, 8, -1}) {
+        CHECK(cbr_mesh_defect_count(h.m, kind) == -1);
+        CHECK(cbr_mesh_defect_listed(h.m, kind) == -1);
+        CHECK(cbr_mesh_get_defect(h.m, kind, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    }
+    CHECK(contains(h.error(), "unknown defect kind -1"));
+    CHECK(cbr_mesh_defect_count(nullptr, CBR_DEFECT_OPEN_EDGE) == -1);
+    CHECK(cbr_mesh_defect_listed(nullptr, CBR_DEFECT_OPEN_EDGE) == -1);
+    CHECK(cbr_mesh_get_defect(nullptr, CBR_DEFECT_OPEN_EDGE, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_get_defect(h.m, CBR_DEFECT_OPEN_EDGE, -1, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    unchanged();
+    // A later check replaces the report.
+    CHECK(h.check(kTetFaces) == CBR_OK);
+    for (int kind : kAllDefectKinds) CHECK(h.count(kind) == 0);
+    CHECK(cbr_mesh_get_defect(h.m, CBR_DEFECT_OPEN_EDGE, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+}
+
+TEST_CASE("check faces: no points yet, every id is out of range") {
+    Handle h;
+    const std::vector<std::int64_t> tris = {0, 1, 2};
+    CHECK(cbr_mesh_check_faces(h.m, 1, tris.data()) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "there are no points"));
+    CHECK(cbr_mesh_defect_count(h.m, CBR_DEFECT_ID_OUT_OF_RANGE) == 1);
+}
+
+TEST_CASE("check faces: extreme ids do not overflow") {
+    CheckHandle h(1);
+    const std::int64_t lo = std::numeric_limits<std::int64_t>::min();
+    const std::int64_t hi = std::numeric_limits<std::int64_t>::max();
+    CHECK(h.check({1, 2, hi, lo + 1, 2, 3}) == CBR_ERR_INVALID_INPUT);
+    CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, 0) == std::vector<std::int64_t>{1, -1, 1, 2, hi});
+    CHECK(h.defect(CBR_DEFECT_ID_OUT_OF_RANGE, 1) == std::vector<std::int64_t>{2, -1, lo + 1, 2, 3});
+    CHECK(h.check({lo, 2, 3}) == CBR_ERR_INVALID_INPUT);  // saturates, see api_check.cpp
+    CHECK(h.count(CBR_DEFECT_ID_OUT_OF_RANGE) == 1);
+}

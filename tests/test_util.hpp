@@ -55,6 +55,30 @@ inline TetSet canonical(const std::vector<std::int64_t>& tets) {
     return s;
 }
 
+// Schonhardt's twisted prism: two triangles (points 0-2 at z = 0 and 3-5 at
+// z = 1, the top turned by 30 degrees) joined by three quadrilaterals split
+// by the diagonals that make the polyhedron impossible to tetrahedralize
+// without a Steiner point. 8 outward triangles, 0-based.
+struct Polyhedron {
+    std::vector<double> xyz;
+    std::vector<std::int64_t> tris;
+};
+inline Polyhedron schonhardt_prism() {
+    const double pi = 3.14159265358979323846;
+    Polyhedron p;
+    for (int level = 0; level < 2; ++level)
+        for (int i = 0; i < 3; ++i) {
+            const double a = 2 * pi * i / 3 + (level ? pi / 6 : 0);
+            p.xyz.insert(p.xyz.end(), {std::cos(a), std::sin(a), double(level)});
+        }
+    p.tris = {0, 2, 1, 3, 4, 5};
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        p.tris.insert(p.tris.end(), {i, j, 3 + j, i, 3 + j, 3 + i});
+    }
+    return p;
+}
+
 // The shared data directory (surfaces/, invalid/), or "" when absent.
 inline std::string shared_data_dir() {
     const char* env = std::getenv("CBR_SHARED_DATA_DIR");

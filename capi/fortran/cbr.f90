@@ -64,7 +64,7 @@
 ! Keep this file in step with cbr.h: tests/abi checks that every function
 ! and constant of the header is declared here with the same value.
 module cbr
-  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_int64_t, c_double, &
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_int32_t, c_int64_t, c_double, &
                                          c_char, c_size_t, c_associated, &
                                          c_f_pointer
   implicit none
@@ -90,6 +90,29 @@ module cbr
 
   ! Parameter keys for cbr_mesh_set_param / cbr_mesh_get_param.
   integer(c_int), parameter, public :: CBR_PARAM_INDEX_BASE = 1
+  integer(c_int), parameter, public :: CBR_PARAM_KEEP_EXTERIOR = 2
+
+  ! Defect kinds of cbr_mesh_check_faces (cbr_mesh_defect_count, ...).
+  integer(c_int), parameter, public :: CBR_DEFECT_ID_OUT_OF_RANGE = 1
+  integer(c_int), parameter, public :: CBR_DEFECT_REPEATED_ID = 2
+  integer(c_int), parameter, public :: CBR_DEFECT_ZERO_AREA = 3
+  integer(c_int), parameter, public :: CBR_DEFECT_DUPLICATE_TRIANGLE = 4
+  integer(c_int), parameter, public :: CBR_DEFECT_INTERSECTION = 5
+  integer(c_int), parameter, public :: CBR_DEFECT_OPEN_EDGE = 6
+  integer(c_int), parameter, public :: CBR_DEFECT_NONMANIFOLD_EDGE = 7
+
+  ! Statistic keys of cbr_mesh_get_stat (the paper's Table I).
+  integer(c_int), parameter, public :: CBR_STAT_TOTAL_VERTICES = 1
+  integer(c_int), parameter, public :: CBR_STAT_BOUNDARY_VERTICES = 2
+  integer(c_int), parameter, public :: CBR_STAT_MISSING_FACES = 3
+  integer(c_int), parameter, public :: CBR_STAT_FACES_RECOVERED_BY_FLIPS = 4
+  integer(c_int), parameter, public :: CBR_STAT_CONFORMING_POINTS = 5
+  integer(c_int), parameter, public :: CBR_STAT_STEINER_GENERATED = 6
+  integer(c_int), parameter, public :: CBR_STAT_STEINER_REMAINING = 7
+  integer(c_int), parameter, public :: CBR_STAT_DELAUNAY_SECONDS = 8
+  integer(c_int), parameter, public :: CBR_STAT_RECOVERY_SECONDS = 9
+  integer(c_int), parameter, public :: CBR_STAT_TOTAL_SECONDS = 10
+  integer(c_int), parameter, public :: CBR_STAT_REGION_COUNT = 11
 
   ! ---------------------------------------------------------------------
   ! The C functions
@@ -100,6 +123,10 @@ module cbr
   public :: cbr_mesh_set_param, cbr_mesh_get_param
   public :: cbr_mesh_insert_points, cbr_mesh_point_count, cbr_mesh_tet_count
   public :: cbr_mesh_get_points, cbr_mesh_get_tets
+  public :: cbr_mesh_check_faces, cbr_mesh_defect_count
+  public :: cbr_mesh_defect_listed, cbr_mesh_get_defect
+  public :: cbr_mesh_recover_faces, cbr_mesh_steiner_count, cbr_mesh_steiner_points
+  public :: cbr_mesh_get_tet_regions, cbr_mesh_get_stat
 
   ! Fortran helper.
   public :: cbr_f_string
@@ -205,6 +232,99 @@ module cbr
       integer(c_int64_t), intent(out) :: tets_out(*)
       integer(c_int) :: status
     end function cbr_mesh_get_tets
+
+    ! int cbr_mesh_recover_faces(cbr_mesh *mesh, int64_t count,
+    !     const int64_t *tris, const int32_t *labels);
+    ! labels may be NULL: pass c_null_ptr, or c_loc(labels) of a target array.
+    function cbr_mesh_recover_faces(mesh, count, tris, labels) &
+        bind(C, name="cbr_mesh_recover_faces") result(status)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int64_t), value, intent(in) :: count
+      integer(c_int64_t), intent(in) :: tris(*)
+      type(c_ptr), value, intent(in) :: labels
+      integer(c_int) :: status
+    end function cbr_mesh_recover_faces
+
+    ! int64_t cbr_mesh_steiner_count(const cbr_mesh *mesh);
+    function cbr_mesh_steiner_count(mesh) &
+        bind(C, name="cbr_mesh_steiner_count") result(count)
+      import :: c_ptr, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int64_t) :: count
+    end function cbr_mesh_steiner_count
+
+    ! int cbr_mesh_steiner_points(const cbr_mesh *mesh, int64_t *ids_out);
+    function cbr_mesh_steiner_points(mesh, ids_out) &
+        bind(C, name="cbr_mesh_steiner_points") result(status)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int64_t), intent(out) :: ids_out(*)
+      integer(c_int) :: status
+    end function cbr_mesh_steiner_points
+
+    ! int cbr_mesh_get_tet_regions(const cbr_mesh *mesh, int32_t *regions_out);
+    function cbr_mesh_get_tet_regions(mesh, regions_out) &
+        bind(C, name="cbr_mesh_get_tet_regions") result(status)
+      import :: c_ptr, c_int, c_int32_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int32_t), intent(out) :: regions_out(*)
+      integer(c_int) :: status
+    end function cbr_mesh_get_tet_regions
+
+    ! int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
+    function cbr_mesh_get_stat(mesh, key, value) &
+        bind(C, name="cbr_mesh_get_stat") result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int), value, intent(in) :: key
+      real(c_double), intent(out) :: value
+      integer(c_int) :: status
+    end function cbr_mesh_get_stat
+
+    ! int cbr_mesh_check_faces(cbr_mesh *mesh, int64_t count,
+    !                          const int64_t *tris);
+    function cbr_mesh_check_faces(mesh, count, tris) &
+        bind(C, name="cbr_mesh_check_faces") result(status)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int64_t), value, intent(in) :: count
+      integer(c_int64_t), intent(in) :: tris(*)
+      integer(c_int) :: status
+    end function cbr_mesh_check_faces
+
+    ! int64_t cbr_mesh_defect_count(const cbr_mesh *mesh, int kind);
+    function cbr_mesh_defect_count(mesh, kind) &
+        bind(C, name="cbr_mesh_defect_count") result(count)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int), value, intent(in) :: kind
+      integer(c_int64_t) :: count
+    end function cbr_mesh_defect_count
+
+    ! int64_t cbr_mesh_defect_listed(const cbr_mesh *mesh, int kind);
+    function cbr_mesh_defect_listed(mesh, kind) &
+        bind(C, name="cbr_mesh_defect_listed") result(count)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int), value, intent(in) :: kind
+      integer(c_int64_t) :: count
+    end function cbr_mesh_defect_listed
+
+    ! int cbr_mesh_get_defect(const cbr_mesh *mesh, int kind, int64_t i,
+    !                         int64_t *triangles_out, int64_t *points_out);
+    ! From Fortran pass both arrays: triangles(2), points(3). i is 0-based
+    ! whatever the index base (it counts listed defects, it is not an id).
+    function cbr_mesh_get_defect(mesh, kind, i, triangles_out, points_out) &
+        bind(C, name="cbr_mesh_get_defect") result(status)
+      import :: c_ptr, c_int, c_int64_t
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int), value, intent(in) :: kind
+      integer(c_int64_t), value, intent(in) :: i
+      integer(c_int64_t), intent(out) :: triangles_out(2)
+      integer(c_int64_t), intent(out) :: points_out(3)
+      integer(c_int) :: status
+    end function cbr_mesh_get_defect
 
     ! size_t strlen(const char *s);  (C library, used by cbr_f_string)
     function cbr_c_strlen(str) bind(C, name="strlen") result(length)

@@ -95,6 +95,10 @@ extern "C" {
    (Fortran). Changing it later reinterprets the ids of later calls only;
    stored data is not affected. */
 #define CBR_PARAM_INDEX_BASE 1
+/* After cbr_mesh_recover_faces: 0 (default) makes cbr_mesh_tet_count and
+   cbr_mesh_get_tets return the tetrahedra of the bounded regions only (what
+   a solver meshes); 1 returns the exterior (region 0) too. */
+#define CBR_PARAM_KEEP_EXTERIOR 2
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */
@@ -189,6 +193,105 @@ CBR_API int cbr_mesh_get_points(const cbr_mesh *mesh, double *xyz_out);
    orientation convention at the top of this file). tets_out may be NULL
    when there are no tetrahedra. */
 CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
+
+/* ------------------------------------------------------------------------ */
+/* Constrained boundary recovery (Du & Wang 2004)                           */
+/* ------------------------------------------------------------------------ */
+
+/* Statistic keys for cbr_mesh_get_stat (numbers fixed forever): the rows of
+   the paper's Table I. Counts are returned as doubles. */
+#define CBR_STAT_TOTAL_VERTICES 1          /* points in the mesh, Steiner points included */
+#define CBR_STAT_BOUNDARY_VERTICES 2       /* distinct points used by the input triangles */
+#define CBR_STAT_MISSING_FACES 3           /* input triangles not faces of the Delaunay mesh */
+#define CBR_STAT_FACES_RECOVERED_BY_FLIPS 4
+#define CBR_STAT_CONFORMING_POINTS 5       /* points added on the surface in conforming recovery (all split off later) */
+#define CBR_STAT_STEINER_GENERATED 6       /* Steiner points created off the surface */
+#define CBR_STAT_STEINER_REMAINING 7       /* Steiner points left after suppression */
+#define CBR_STAT_DELAUNAY_SECONDS 8
+#define CBR_STAT_RECOVERY_SECONDS 9
+#define CBR_STAT_TOTAL_SECONDS 10
+#define CBR_STAT_REGION_COUNT 11           /* regions, the exterior (region 0) included */
+
+/* Recovers the `count` triangles `tris` (3*count point ids, index base as
+   set) as faces of the tetrahedralization of the points inserted so far,
+   without adding any point on them, then classifies the regions. labels
+   (one per triangle) may be NULL. Call it once per mesh, after the last
+   cbr_mesh_insert_points.
+   On success every input triangle is a face, no tetrahedron is inverted or
+   flat and no Steiner point lies on an input triangle; regions are the
+   connected sets of tetrahedra separated by input triangles: 0 outside,
+   then 1, 2, ... numbered by the smallest input triangle on their boundary
+   (and its side), so the numbering depends on the input only.
+   Errors (the mesh is then unchanged):
+     CBR_ERR_INVALID_ARGUMENT  NULL mesh, NULL tris with count > 0, negative
+                               count, called twice, or fewer than 4
+                               non-coplanar points;
+     CBR_ERR_INVALID_INPUT     an invalid surface (see cbr_mesh_check_faces:
+                               the message names the triangles);
+     CBR_ERR_RECOVERY_FAILED   some triangles could not be recovered; the
+                               message names them.
+   Open surfaces and non-manifold edges are legal. */
+CBR_API int cbr_mesh_recover_faces(cbr_mesh *mesh, int64_t count, const int64_t *tris, const int32_t *labels);
+
+/* Number of Steiner points (points added by recovery, all off the
+   surface); -1 for a NULL mesh. Their ids follow the input points'. */
+CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh *mesh);
+
+/* Copies the ids of the Steiner points (cbr_mesh_steiner_count of them, in
+   the index base as set) into ids_out (may be NULL when there are none). */
+CBR_API int cbr_mesh_steiner_points(const cbr_mesh *mesh, int64_t *ids_out);
+
+/* Copies the region of each tetrahedron, in the order of cbr_mesh_get_tets
+   (cbr_mesh_tet_count values), into regions_out. Before recovery every
+   tetrahedron is in region 0. */
+CBR_API int cbr_mesh_get_tet_regions(const cbr_mesh *mesh, int32_t *regions_out);
+
+/* Reads statistic `key` (a CBR_STAT_* key) into *value; 0 before the step
+   that sets it has run. CBR_ERR_INVALID_ARGUMENT for a NULL mesh or value
+   or an unknown key. */
+CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
+
+/* ------------------------------------------------------------------------ */
+/* Surface checks                                                           */
+/* ------------------------------------------------------------------------ */
+
+/* Defect kinds found by cbr_mesh_check_faces (numbers fixed forever).
+   The first five make a surface unusable for boundary recovery; open and
+   non-manifold edges are legal (an open surface, two domains sharing a
+   face) and reported for information. */
+#define CBR_DEFECT_ID_OUT_OF_RANGE 1    /* a triangle names a point id that does not exist */
+#define CBR_DEFECT_REPEATED_ID 2        /* a triangle uses one point twice */
+#define CBR_DEFECT_ZERO_AREA 3          /* a triangle's three points are collinear */
+#define CBR_DEFECT_DUPLICATE_TRIANGLE 4 /* two triangles with the same three points */
+#define CBR_DEFECT_INTERSECTION 5       /* two triangles meet other than in a shared vertex or edge */
+#define CBR_DEFECT_OPEN_EDGE 6          /* an edge used by one triangle only (information) */
+#define CBR_DEFECT_NONMANIFOLD_EDGE 7   /* an edge used by more than two triangles (information) */
+
+/* Checks `count` triangles (3*count point ids, index base as set) against
+   the points of the mesh, exactly, and keeps the report in the handle
+   (replacing the previous one). Returns CBR_OK when the surface has none of
+   the first five defects, CBR_ERR_INVALID_INPUT when it has (the message
+   names the first ones, e.g. "triangles 12 and 873 intersect (not in a
+   shared vertex or edge)"), CBR_ERR_INVALID_ARGUMENT for a NULL mesh or
+   tris with count > 0, or a negative count. Costs about O(n log n). */
+CBR_API int cbr_mesh_check_faces(cbr_mesh *mesh, int64_t count, const int64_t *tris);
+
+/* Number of defects of kind `kind` (a CBR_DEFECT_* key) in the last report:
+   all of them, although only the first few are listed (see
+   cbr_mesh_get_defect). 0 before any check; -1 for a NULL mesh or an
+   unknown kind. */
+CBR_API int64_t cbr_mesh_defect_count(const cbr_mesh *mesh, int kind);
+
+/* Number of listed defects of kind `kind` (at most 20, the first in a fixed
+   order: the report is deterministic); -1 for a NULL mesh or unknown kind. */
+CBR_API int64_t cbr_mesh_defect_listed(const cbr_mesh *mesh, int kind);
+
+/* The i-th listed defect of kind `kind` (0 <= i < cbr_mesh_defect_listed,
+   in the index base as set): triangles_out receives 2 triangle indices (the
+   second is -1 when a defect involves one triangle), points_out 3 point ids
+   (-1 where not applicable: an edge defect gives 2). Either may be NULL. */
+CBR_API int cbr_mesh_get_defect(const cbr_mesh *mesh, int kind, int64_t i, int64_t *triangles_out,
+                                int64_t *points_out);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -7,36 +7,35 @@
 #include <string>
 #include <vector>
 
+#include "cli/check_command.hpp"
 #include "cli/demo_geometry.hpp"
+#include "cli/exit_codes.hpp"
 
 namespace {
 
-// Exit codes (documented in README): 0 ok, 1 usage, 2 input, 3 recovery
-// failure, 4 I/O, 5 internal.
-constexpr int kExitOk = 0;
-constexpr int kExitUsage = 1;
-constexpr int kExitInternal = 5;
-
-int exit_code_for(int status) {
-    switch (status) {
-        case CBR_OK: return kExitOk;
-        case CBR_ERR_INVALID_ARGUMENT: return kExitUsage;
-        case CBR_ERR_INVALID_INPUT: return 2;
-        case CBR_ERR_RECOVERY_FAILED: return 3;
-        case CBR_ERR_IO: return 4;
-        default: return kExitInternal;
-    }
-}
+using cbr::cli::exit_code_for;
+using cbr::cli::kExitOk;
+using cbr::cli::kExitUsage;
 
 void print_usage(std::FILE* out) {
     std::fputs(
         "usage: cbr <command> [options]\n"
         "\n"
         "commands:\n"
+        "  check IN    report what would stop a boundary recovery of the surface IN:\n"
+        "              open edges, duplicate points, zero-area, duplicate and\n"
+        "              intersecting triangles, ...; also non-manifold edges and\n"
+        "              vertices, orientation, components, bounding box\n"
+        "              (cbr check --help; --allow-open accepts open surfaces)\n"
         "  demo        tetrahedralize the built-in example (the paper's Example 1:\n"
         "              a box holding nine spheres) and print what was done\n"
         "  --version   print the library version\n"
-        "  --help      this text\n",
+        "  --help      this text\n"
+        "\n"
+        "exit codes: 0 success; 1 usage (bad command line); 2 invalid input (a file\n"
+        "that does not parse, or a surface that cannot be recovered); 3 recovery\n"
+        "failure; 4 I/O (missing or unreadable file, unknown extension); 5 internal\n"
+        "error.\n",
         out);
 }
 
@@ -86,6 +85,7 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     if (command == "demo") return run_demo();
+    if (command == "check") return cbr::cli::run_check(argc - 1, argv + 1);
     std::fprintf(stderr, "cbr: unknown command '%s' (try cbr --help)\n", command.c_str());
     return kExitUsage;
 }

@@ -55,7 +55,7 @@ InsertOutcome Delaunay::insert_points(const double* xyz, std::size_t count) {
         outcome = insert_batch(static_cast<VertexId>(before), mesh_.vertex_count());
     } catch (...) {
         discard_vertices_from(before);
-        restore_previous();
+        rebuild();
         throw;
     }
     if (!outcome.ok) {
@@ -63,7 +63,7 @@ InsertOutcome Delaunay::insert_points(const double* xyz, std::size_t count) {
         outcome.duplicate_first = std::min(a, b);
         outcome.duplicate_second = std::max(a, b);
         discard_vertices_from(before);
-        restore_previous();
+        rebuild();
         return outcome;
     }
     if (count > 0) batch_ends_.push_back(mesh_.vertex_count());
@@ -144,7 +144,7 @@ InsertOutcome Delaunay::insert_batch(VertexId first, std::size_t end) {
     return outcome;
 }
 
-void Delaunay::restore_previous() {
+void Delaunay::rebuild() {
     mesh_.clear_tets();
     kernel_.set_hint(0);
     std::size_t first = 0;

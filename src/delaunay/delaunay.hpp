@@ -38,11 +38,18 @@ public:
     // range: the caller checks) and updates the tetrahedralization. On
     // duplicate points, or when an exception (std::bad_alloc, ...) leaves
     // this function, the previous state is restored exactly (see
-    // restore_previous) and the outcome names the duplicates.
+    // rebuild) and the outcome names the duplicates.
     InsertOutcome insert_points(const double* xyz, std::size_t count);
 
     // The mesh, in internal vertex ids.
     const mesh::TetMesh& mesh() const { return mesh_; }
+    // For the steps that modify it (boundary recovery); rebuild() brings
+    // back the Delaunay tetrahedralization.
+    mesh::TetMesh& mesh_for_update() { return mesh_; }
+    // Rebuilds the state as it was after the successful batches: the
+    // algorithm is deterministic, so replaying them gives bit-identical
+    // arrays (same tetrahedra, same order).
+    void rebuild();
     mesh::VertexId external_id(mesh::VertexId internal) const { return external_of_[internal]; }
     mesh::VertexId internal_id(mesh::VertexId external) const { return internal_of_[external]; }
     const geom::PredicateCounters& counters() const { return counters_; }
@@ -60,10 +67,6 @@ private:
     // with the other points in `rest`. False when there is no such
     // quadruple (then duplicates among them, if any, are in `outcome`).
     bool start_triangulation(std::size_t n, std::vector<mesh::VertexId>& rest, InsertOutcome& outcome);
-    // Rebuilds the state as it was after the successful batches: the
-    // algorithm is deterministic, so replaying them gives bit-identical
-    // arrays (same tetrahedra, same order).
-    void restore_previous();
 
     mesh::TetMesh mesh_;
     geom::PredicateCounters counters_;

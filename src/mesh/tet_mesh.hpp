@@ -54,6 +54,7 @@ inline constexpr int kFaceVertices[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0,
 inline constexpr std::uint8_t kFlagFree = 1u << 0;
 inline constexpr std::uint8_t kFlagMarkA = 1u << 1;
 inline constexpr std::uint8_t kFlagMarkB = 1u << 2;
+inline constexpr std::uint8_t kFlagConstraintFace0 = 1u << 4;  // bits 4..7: faces 0..3
 
 inline FacetRef make_facet(TetId t, int f) { return 4 * t + static_cast<FacetRef>(f); }
 inline TetId facet_tet(FacetRef r) { return r >> 2; }
@@ -94,6 +95,13 @@ public:
     void clear_mark(TetId t, std::uint8_t mark) { flags_[t] &= static_cast<std::uint8_t>(~mark); }
     bool has_mark(TetId t, std::uint8_t mark) const { return (flags_[t] & mark) != 0; }
 
+    // Face f of t is a recovered constraint face (marked on both sides).
+    bool is_constrained(TetId t, int f) const { return (flags_[t] & constraint_bit(f)) != 0; }
+    void set_constrained(TetId t, int f, bool on) {
+        if (on) flags_[t] |= constraint_bit(f);
+        else flags_[t] &= static_cast<std::uint8_t>(~constraint_bit(f));
+    }
+
     // A tetrahedron slot: a free one if any, else a new one at the end.
     // Throws std::length_error beyond kMaxTets, std::bad_alloc when out of
     // memory. Vertices and neighbours are left for the caller to set.
@@ -107,6 +115,8 @@ public:
     std::size_t memory_bytes() const;
 
 private:
+    static std::uint8_t constraint_bit(int f) { return static_cast<std::uint8_t>(kFlagConstraintFace0 << f); }
+
     struct alignas(32) TetRecord {
         VertexId v[4];
         FacetRef n[4];

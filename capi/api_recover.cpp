@@ -1,0 +1,135 @@
+// extern "C" boundary recovery: cbr_mesh_recover_faces and the queries of
+// its results (Steiner points, regions, Table I statistics).
+#include <cbr/cbr.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "handle.hpp"
+
+using cbr::capi::ApiError;
+using cbr::capi::guarded;
+using cbr::capi::require;
+
+namespace {
+
+// "triangles 3, 17 and 40 (and 12 more)" in the caller's index base.
+std::string name_triangles(const std::vector<std::size_t>& tris, int base) {
+    std::string s = tris.size() == 1 ? "triangle " : "triangles ";
+    const std::size_t shown = std::min<std::size_t>(tris.size(), 10);
+    for (std::size_t i = 0; i < shown; ++i) {
+        if (i > 0) s += i + 1 == shown && shown == tris.size() ? " and " : ", ";
+        s += std::to_string(tris[i] + static_cast<std::size_t>(base));
+    }
+    if (tris.size() > shown) s += " (and " + std::to_string(tris.size() - shown) + " more)";
+    return s;
+}
+
+// The input triangles in internal vertex ids (after the surface check, so
+// every id is valid).
+cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t count, const std::int64_t* tris,
+                                               const std::int32_t* labels) {
+    std::vector<cbr::recover::Triangle> internal(static_cast<std::size_t>(count));
+    for (std::size_t i = 0; i < internal.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            internal[i][k] = h.delaunay.internal_id(static_cast<cbr::mesh::VertexId>(tris[3 * i + k] - h.index_base));
+    std::vector<std::int32_t> label_list;
+    if (labels) label_list.assign(labels, labels + count);
+    return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
+}
+
+}  // namespace
+
+extern "C" {
+
+CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t* tris, const int32_t* labels) {
+    return guarded(mesh, "cbr_mesh_recover_faces", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        require(!mesh->recovery.done, CBR_ERR_INVALID_ARGUMENT, "the faces of this mesh were recovered already");
+        require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
+        require(count == 0 || tris != nullptr, CBR_ERR_INVALID_ARGUMENT, "tris is NULL");
+        require(mesh->delaunay.finite_tet_count() > 0, CBR_ERR_INVALID_ARGUMENT,
+                "no tetrahedron to recover faces in: insert at least 4 non-coplanar points first");
+        // The same exact checks as cbr_mesh_check_faces, before any change.
+        if (cbr_mesh_check_faces(mesh, count, tris) != CBR_OK) {
+            const std::string detail = mesh->last_error.substr(mesh->last_error.find(": ") + 2);
+            throw ApiError{CBR_ERR_INVALID_INPUT, "invalid surface: " + detail};
+        }
+        const auto start = std::chrono::steady_clock::now();
+        cbr::capi::RecoveryState state;
+        state.faces = constraint_faces(*mesh, count, tris, labels);
+        const auto result =
+            cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats);
+        if (!result.ok) {
+            mesh->delaunay.rebuild();  // the handle stays as it was
+            if (!result.invalid.empty())
+                throw ApiError{CBR_ERR_INTERNAL, "recovery left an invalid mesh: " + result.invalid.front()};
+            throw ApiError{CBR_ERR_RECOVERY_FAILED,
+                           "could not recover " + name_triangles(result.unrecovered, mesh->index_base) + " of " +
+                               std::to_string(count) + " (" + std::to_string(state.stats.missing_faces) +
+                               " missing after Delaunay; only faces present after Delaunay are recovered "
+                               "in this version)"};
+        }
+        state.regions = cbr::recover::classify_regions(mesh->delaunay.mesh(), state.faces);
+        state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        state.done = true;
+        mesh->recovery = std::move(state);
+        return CBR_OK;
+    });
+}
+
+CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh* mesh) {
+    if (!mesh) return -1;
+    return static_cast<int64_t>(mesh->recovery.steiner.size());
+}
+
+CBR_API int cbr_mesh_steiner_points(const cbr_mesh* mesh, int64_t* ids_out) {
+    return guarded(mesh, "cbr_mesh_steiner_points", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        if (mesh->recovery.steiner.empty()) return CBR_OK;
+        require(ids_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "ids_out is NULL");
+        for (cbr::mesh::VertexId v : mesh->recovery.steiner)
+            *ids_out++ = std::int64_t{mesh->delaunay.external_id(v)} + mesh->index_base;
+        return CBR_OK;
+    });
+}
+
+CBR_API int cbr_mesh_get_tet_regions(const cbr_mesh* mesh, int32_t* regions_out) {
+    return guarded(mesh, "cbr_mesh_get_tet_regions", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        const cbr::mesh::TetMesh& m = mesh->delaunay.mesh();
+        for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
+            if (!cbr::capi::is_returned(*mesh, t)) continue;
+            require(regions_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "regions_out is NULL");
+            *regions_out++ = mesh->recovery.done ? mesh->recovery.regions.of_tet[t] : 0;
+        }
+        return CBR_OK;
+    });
+}
+
+CBR_API int cbr_mesh_get_stat(const cbr_mesh* mesh, int key, double* value) {
+    return guarded(mesh, "cbr_mesh_get_stat", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        require(value != nullptr, CBR_ERR_INVALID_ARGUMENT, "value is NULL");
+        const cbr::capi::RecoveryState& r = mesh->recovery;
+        const auto count = [](std::size_t n) { return static_cast<double>(n); };
+        switch (key) {
+            case CBR_STAT_TOTAL_VERTICES: *value = count(mesh->delaunay.mesh().vertex_count()); break;
+            case CBR_STAT_BOUNDARY_VERTICES: *value = r.done ? count(r.faces.vertex_count()) : 0.0; break;
+            case CBR_STAT_MISSING_FACES: *value = count(r.stats.missing_faces); break;
+            case CBR_STAT_FACES_RECOVERED_BY_FLIPS: *value = count(r.stats.recovered_by_flips); break;
+            case CBR_STAT_CONFORMING_POINTS: *value = count(r.stats.conforming_points); break;
+            case CBR_STAT_STEINER_GENERATED: *value = count(r.stats.steiner_generated); break;
+            case CBR_STAT_STEINER_REMAINING: *value = count(r.stats.steiner_remaining); break;
+            case CBR_STAT_DELAUNAY_SECONDS: *value = mesh->delaunay_seconds; break;
+            case CBR_STAT_RECOVERY_SECONDS: *value = r.seconds; break;
+            case CBR_STAT_TOTAL_SECONDS: *value = mesh->delaunay_seconds + r.seconds; break;
+            case CBR_STAT_REGION_COUNT: *value = r.done ? r.regions.count : 0; break;
+            default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown statistic key " + std::to_string(key)};
+        }
+        return CBR_OK;
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,27 @@
+// Exit codes of the cbr command (documented in `cbr --help` and README,
+// "The cbr command"), and the mapping from libcbr's status codes.
+#pragma once
+
+#include <cbr/cbr.h>
+
+namespace cbr::cli {
+
+constexpr int kExitOk = 0;        // success
+constexpr int kExitUsage = 1;     // bad command line
+constexpr int kExitInput = 2;     // invalid input: unparsable file, or a surface that cannot be recovered
+constexpr int kExitRecovery = 3;  // boundary recovery failed
+constexpr int kExitIo = 4;        // a file missing, unreadable, unwritable, or of unknown extension
+constexpr int kExitInternal = 5;  // a bug or out of memory
+
+inline int exit_code_for(int status) {
+    switch (status) {
+        case CBR_OK: return kExitOk;
+        case CBR_ERR_INVALID_ARGUMENT: return kExitUsage;
+        case CBR_ERR_INVALID_INPUT: return kExitInput;
+        case CBR_ERR_RECOVERY_FAILED: return kExitRecovery;
+        case CBR_ERR_IO: return kExitIo;
+        default: return kExitInternal;
+    }
+}
+
+}  // namespace cbr::cli

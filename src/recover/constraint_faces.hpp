@@ -1,0 +1,47 @@
+// The input surface as constraints: triangles in mesh (internal) vertex
+// ids with their labels, looked up by vertex set.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::recover {
+
+using Triangle = std::array<mesh::VertexId, 3>;
+
+class ConstraintFaces {
+public:
+    static constexpr std::size_t npos = ~std::size_t{0};
+
+    ConstraintFaces() = default;
+    // Triangles must be valid (distinct ids, no duplicate triangle): the
+    // surface check runs first.
+    ConstraintFaces(std::vector<Triangle> triangles, std::vector<std::int32_t> labels);
+
+    std::size_t size() const { return triangles_.size(); }
+    const Triangle& triangle(std::size_t i) const { return triangles_[i]; }
+    std::int32_t label(std::size_t i) const { return labels_[i]; }
+    // Index of the triangle with vertices {a, b, c} in any order, or npos.
+    std::size_t find(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) const;
+    // Number of distinct vertices used by the triangles.
+    std::size_t vertex_count() const;
+
+private:
+    struct KeyHash {
+        std::size_t operator()(const Triangle& k) const;
+    };
+    std::vector<Triangle> triangles_;
+    std::vector<std::int32_t> labels_;
+    std::unordered_map<Triangle, std::uint32_t, KeyHash> index_;  // sorted vertices -> triangle
+};
+
+// Marks, on both sides, every mesh face that is an input triangle as a
+// constraint face, and returns the indices of the input triangles that are
+// not faces of the mesh, in increasing order.
+std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces);
+
+}  // namespace cbr::recover

@@ -1,0 +1,38 @@
+// Constrained boundary recovery (Du & Wang 2004, §5): the driver. Steps, in
+// order: find the missing faces; flips (§5.1); per remaining face,
+// conforming recovery then edge- and face-added-point splitting (§5.2-5.4);
+// Steiner suppression and repositioning (§6). The steps after the first
+// plug in here as they land; until then a missing face is reported, never
+// hidden.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/constraint_faces.hpp"
+
+namespace cbr::recover {
+
+// The rows of the paper's Table I that recovery fills.
+struct RecoveryStats {
+    std::size_t missing_faces = 0;       // after Delaunay
+    std::size_t recovered_by_flips = 0;
+    std::size_t conforming_points = 0;   // added on the surface, then split off
+    std::size_t steiner_generated = 0;
+    std::size_t steiner_remaining = 0;
+};
+
+struct RecoveryResult {
+    bool ok = false;
+    std::vector<std::size_t> unrecovered;  // input triangles that are not faces
+    std::vector<std::string> invalid;      // whole-mesh check failures (a bug if not empty)
+};
+
+// Recovers every triangle of `faces` as a face of m, marking them as
+// constraint faces. On failure m may have been modified: the caller
+// restores it.
+RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats);
+
+}  // namespace cbr::recover

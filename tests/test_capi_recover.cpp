@@ -1,0 +1,154 @@
+// cbr_mesh_recover_faces and its queries, as a caller sees them.
+#include <doctest/doctest.h>
+
+#include <cbr/cbr.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "test_util.hpp"
+
+namespace {
+
+struct Handle {
+    cbr_mesh* m = nullptr;
+    Handle() { REQUIRE(cbr_mesh_create(&m) == CBR_OK); }
+    ~Handle() { cbr_mesh_destroy(m); }
+    std::string error() const { return cbr_mesh_last_error(m); }
+};
+
+std::vector<std::int64_t> tets_of(const cbr_mesh* m) {
+    std::vector<std::int64_t> t(4 * static_cast<std::size_t>(cbr_mesh_tet_count(m)));
+    REQUIRE(cbr_mesh_get_tets(m, t.data()) == CBR_OK);
+    return t;
+}
+
+double stat(const cbr_mesh* m, int key) {
+    double v = -1;
+    REQUIRE(cbr_mesh_get_stat(m, key, &v) == CBR_OK);
+    return v;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The boundary of the Delaunay tetrahedra whose centroid lies within 0.3 of
+// the centre, outward: a closed surface made of faces that are present.
+std::vector<std::int64_t> ball_surface(const std::vector<double>& xyz, const std::vector<std::int64_t>& tets,
+                                       std::size_t* inside_count) {
+    const std::size_t n = tets.size() / 4;
+    std::vector<char> inside(n);
+    *inside_count = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+        double c[3] = {0, 0, 0};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) c[k] += xyz[3 * static_cast<std::size_t>(tets[4 * t + i]) + k] / 4;
+        inside[t] = (c[0] - .5) * (c[0] - .5) + (c[1] - .5) * (c[1] - .5) + (c[2] - .5) * (c[2] - .5) < 0.09;
+        *inside_count += inside[t] ? 1 : 0;
+    }
+    // A face of exactly one inside tetrahedron and at most one outside one
+    // (none on the hull) is on the boundary.
+    std::map<std::array<std::int64_t, 3>, std::array<int, 2>> sides;  // tetrahedra inside, outside
+    std::map<std::array<std::int64_t, 3>, std::array<std::int64_t, 3>> oriented;
+    static const int face[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+    for (std::size_t t = 0; t < n; ++t)
+        for (int f = 0; f < 4; ++f) {
+            std::array<std::int64_t, 3> v = {tets[4 * t + face[f][0]], tets[4 * t + face[f][2]], tets[4 * t + face[f][1]]};
+            std::array<std::int64_t, 3> key = v;
+            std::sort(key.begin(), key.end());
+            ++sides[key][inside[t] ? 0 : 1];
+            if (inside[t]) oriented[key] = v;
+        }
+    std::vector<std::int64_t> tris;
+    for (const auto& [key, count] : sides)
+        if (count[0] == 1 && count[1] <= 1) tris.insert(tris.end(), oriented[key].begin(), oriented[key].end());
+    return tris;
+}
+
+}  // namespace
+
+TEST_CASE("recovering a surface whose faces are all present, and reading the regions") {
+    Handle h;
+    const auto xyz = cbr::test::random_points(2000, 31);
+    REQUIRE(cbr_mesh_insert_points(h.m, 2000, xyz.data()) == CBR_OK);
+    const auto all = tets_of(h.m);
+    std::size_t inside = 0;
+    const auto tris = ball_surface(xyz, all, &inside);
+    const auto count = static_cast<std::int64_t>(tris.size() / 3);
+    REQUIRE(count > 50);
+    std::vector<std::int32_t> labels(static_cast<std::size_t>(count), 7);
+    REQUIRE(cbr_mesh_recover_faces(h.m, count, tris.data(), labels.data()) == CBR_OK);
+
+    CHECK(stat(h.m, CBR_STAT_MISSING_FACES) == 0);
+    CHECK(stat(h.m, CBR_STAT_TOTAL_VERTICES) == 2000);
+    CHECK(stat(h.m, CBR_STAT_REGION_COUNT) >= 2);
+    CHECK(stat(h.m, CBR_STAT_TOTAL_SECONDS) >= stat(h.m, CBR_STAT_RECOVERY_SECONDS));
+    std::set<std::int64_t> boundary(tris.begin(), tris.end());
+    CHECK(stat(h.m, CBR_STAT_BOUNDARY_VERTICES) == double(boundary.size()));
+    CHECK(cbr_mesh_steiner_count(h.m) == 0);
+
+    // Bounded regions only by default: at least the chosen tetrahedra
+    // (pockets they enclose are bounded regions too), never all of them.
+    const std::int64_t bounded = cbr_mesh_tet_count(h.m);
+    CHECK(bounded >= static_cast<std::int64_t>(inside));
+    CHECK(bounded < static_cast<std::int64_t>(all.size() / 4));
+    std::vector<std::int32_t> regions(static_cast<std::size_t>(bounded));
+    REQUIRE(cbr_mesh_get_tet_regions(h.m, regions.data()) == CBR_OK);
+    for (std::int32_t r : regions) CHECK(r > 0);
+
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
+    CHECK(cbr_mesh_tet_count(h.m) == static_cast<std::int64_t>(all.size() / 4));
+    regions.resize(all.size() / 4);
+    REQUIRE(cbr_mesh_get_tet_regions(h.m, regions.data()) == CBR_OK);
+    CHECK(std::count(regions.begin(), regions.end(), 0) > 0);
+
+    // Once recovered, the mesh takes no more points and no second recovery.
+    CHECK(cbr_mesh_insert_points(h.m, 1, xyz.data()) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "after cbr_mesh_recover_faces"));
+    CHECK(cbr_mesh_recover_faces(h.m, count, tris.data(), nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "recovered already"));
+}
+
+TEST_CASE("a face that cannot be recovered yet is named, and the mesh is unchanged") {
+    const cbr::test::Polyhedron prism = cbr::test::schonhardt_prism();
+    const std::vector<double>& xyz = prism.xyz;
+    std::vector<std::int64_t> tris = prism.tris;
+    for (auto& v : tris) ++v;  // 1-based
+    Handle h;
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_INDEX_BASE, 1) == CBR_OK);
+    REQUIRE(cbr_mesh_insert_points(h.m, 6, xyz.data()) == CBR_OK);
+    const auto before = tets_of(h.m);
+    CHECK(cbr_mesh_recover_faces(h.m, 8, tris.data(), nullptr) == CBR_ERR_RECOVERY_FAILED);
+    CHECK(contains(h.error(), "could not recover triangle"));
+    CHECK(tets_of(h.m) == before);  // bit for bit
+    CHECK(cbr_mesh_steiner_count(h.m) == 0);
+    // Still usable: more points can be inserted.
+    const double extra[3] = {0, 0, 0.5};
+    CHECK(cbr_mesh_insert_points(h.m, 1, extra) == CBR_OK);
+}
+
+TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any change") {
+    Handle h;
+    CHECK(cbr_mesh_recover_faces(nullptr, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0};
+    const std::vector<std::int64_t> tri = {0, 1, 2};
+    CHECK(cbr_mesh_recover_faces(h.m, 1, tri.data(), nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "insert at least 4 non-coplanar points"));
+    REQUIRE(cbr_mesh_insert_points(h.m, 5, xyz.data()) == CBR_OK);
+    const auto before = tets_of(h.m);
+    CHECK(cbr_mesh_recover_faces(h.m, -1, tri.data(), nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_recover_faces(h.m, 1, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    const std::vector<std::int64_t> flat = {0, 1, 4};  // collinear: zero area
+    CHECK(cbr_mesh_recover_faces(h.m, 1, flat.data(), nullptr) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "invalid surface"));
+    CHECK(contains(h.error(), "zero area"));
+    const std::vector<std::int64_t> out_of_range = {0, 1, 9};
+    CHECK(cbr_mesh_recover_faces(h.m, 1, out_of_range.data(), nullptr) == CBR_ERR_INVALID_INPUT);
+    CHECK(tets_of(h.m) == before);
+    double v = 0;
+    CHECK(cbr_mesh_get_stat(h.m, 999, &v) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_get_stat(h.m, CBR_STAT_MISSING_FACES, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+}

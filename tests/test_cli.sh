@@ -1,0 +1,216 @@
+#!/bin/sh
+# The cbr command as a user meets it: exit codes, the one error line on
+# stderr, the report on stdout.
+#
+#   test_cli.sh local  <cbr> <tests/data/io>   small generated files and the
+#                                              repository's format samples
+#   test_cli.sh shared <cbr> [<data dir>]      every file of ../shared/data:
+#                                              invalid/ rejected, surfaces/
+#                                              accepted; the data directory
+#                                              comes from CBR_SHARED_DATA_DIR
+#                                              or the argument; exit 77 (skip)
+#                                              when it is absent
+set -u
+
+if [ $# -lt 2 ]; then
+    echo "usage: $0 local <cbr> <io data dir> | shared <cbr> [<data dir>]" >&2
+    exit 2
+fi
+mode=$1
+cbr=$2
+[ -x "$cbr" ] || { echo "FAIL: $cbr is not an executable"; exit 1; }
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+checks=0
+
+fail() {
+    echo "FAIL: $*"
+    echo "  stdout: $(head -c 2000 "$tmp/out")"
+    echo "  stderr: $(cat "$tmp/err")"
+    failures=$((failures + 1))
+}
+
+# expect CODE STDERR_PATTERN ARGS...: runs cbr ARGS, checks the exit code and
+# that stderr matches the (grep -E) pattern; "" expects an empty stderr.
+expect() {
+    code=$1
+    pattern=$2
+    shift 2
+    checks=$((checks + 1))
+    "$cbr" "$@" > "$tmp/out" 2> "$tmp/err"
+    rc=$?
+    if [ "$rc" -ne "$code" ]; then
+        fail "cbr $* exited with $rc, expected $code"
+        return 1
+    fi
+    if [ -z "$pattern" ]; then
+        [ -s "$tmp/err" ] && { fail "cbr $*: unexpected stderr"; return 1; }
+    else
+        [ "$(wc -l < "$tmp/err")" -eq 1 ] || { fail "cbr $*: stderr is not one line"; return 1; }
+        grep -Eq -- "$pattern" "$tmp/err" || { fail "cbr $*: stderr does not match /$pattern/"; return 1; }
+    fi
+    return 0
+}
+
+# report_has PATTERN: the last stdout matches the (grep -E) pattern.
+report_has() {
+    checks=$((checks + 1))
+    grep -Eq -- "$1" "$tmp/out" || fail "the report does not match /$1/"
+}
+
+# off NAME POINTS TRIANGLES: writes $tmp/NAME.off from "x y z;..." and "a b c;..."
+off() {
+    np=$(echo "$2" | tr ';' '\n' | grep -c .)
+    nt=$(echo "$3" | tr ';' '\n' | grep -c .)
+    {
+        echo OFF
+        echo "$np $nt 0"
+        echo "$2" | tr ';' '\n' | grep .
+        echo "$3" | tr ';' '\n' | grep . | sed 's/^/3 /'
+    } > "$tmp/$1.off"
+}
+
+run_local() {
+    io_data=$1
+    tet_points="0 0 0;1 0 0;0 1 0;0 0 1"
+    tet_faces="0 2 1;0 1 3;0 3 2;1 2 3"
+
+    # Usage and help.
+    checks=$((checks + 1))
+    "$cbr" > "$tmp/out" 2> "$tmp/err"
+    [ $? -eq 1 ] && grep -q "usage: cbr" "$tmp/err" || fail "cbr without arguments: not a usage error"
+    expect 0 "" --help && report_has "check IN" && report_has "exit codes: 0 success; 1 usage"
+    expect 0 "" check --help && report_has "--allow-open" && report_has "exit codes"
+    expect 1 "no input file" check
+    expect 1 "unknown option '--frobnicate'" check --frobnicate x.off
+    expect 1 "one input file only" check a.off b.off
+    expect 1 "--list needs a number" check --list 99 a.off
+    expect 1 "unknown command 'chek'" chek
+
+    # I/O and parse errors.
+    expect 4 "no such file" check "$tmp/missing.off"
+    echo "x" > "$tmp/surface.xyz"
+    expect 4 "unknown surface file extension 'xyz'" check "$tmp/surface.xyz"
+    mkdir "$tmp/dir.off"
+    expect 4 "is a directory" check "$tmp/dir.off"
+    printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 oops\n3 0 1 2\n' > "$tmp/parse.off"
+    expect 2 "parse\.off:6: " check "$tmp/parse.off"
+    printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n' > "$tmp/index.off"
+    expect 2 "index\.off:6: .*out of range" check "$tmp/index.off"
+    off noface "$tet_points" ""
+    expect 2 "no triangles" check "$tmp/noface.off"
+    off huge "0 0 0;1 0 0;0 1 0;0 0 1e300" "$tet_faces"
+    expect 2 "point 3 has z = .*outside the supported range" check "$tmp/huge.off"
+    off hugedup "0 0 0;0 0 0;1 0 0;0 1 0;0 0 1e300" "0 2 3;0 3 4"
+    expect 2 "point 4 has z = " check "$tmp/hugedup.off"
+
+    # Every format sample of the repository reads and passes.
+    for f in "$io_data"/tet*.off "$io_data"/tet*.stl "$io_data"/tet*.ply "$io_data"/tet*.mesh "$io_data"/tet*.smesh; do
+        expect 0 "" check "$f" && report_has "^result: ok"
+    done
+    expect 2 "has 4 corners" check "$io_data/pyramid.obj"
+    expect 0 "" check --triangulate "$io_data/pyramid.obj"
+
+    # A closed tetrahedron, then each defect.
+    off tet "$tet_points" "$tet_faces"
+    expect 0 "" check "$tmp/tet.off" && report_has "4 points, 4 triangles" &&
+        report_has "orientation +consistent, outward normals" && report_has "connected components +1" &&
+        report_has "bounding box +\[0, 1\] x \[0, 1\] x \[0, 1\]"
+    off inward "$tet_points" "0 1 2;0 3 1;0 2 3;1 3 2"
+    expect 0 "" check "$tmp/inward.off" && report_has "INWARD normals"
+    off flipped "$tet_points" "0 1 2;0 1 3;0 3 2;1 2 3"
+    expect 0 "" check "$tmp/flipped.off" && report_has "orientation +NOT consistent"
+    off open "$tet_points" "0 2 1;0 1 3;0 3 2"
+    expect 2 "3 open edges; first: edge 1-2 \(triangle 0\)" check "$tmp/open.off" &&
+        report_has "open edges +3 +\(the surface is open"
+    expect 0 "" check --allow-open "$tmp/open.off" && report_has "allowed by --allow-open"
+    off repeated "$tet_points" "$tet_faces;1 1 2"
+    expect 2 "1 triangle using a point twice; first: triangle 4 " check "$tmp/repeated.off"
+    off flat "$tet_points;2 0 0" "$tet_faces;0 1 4"
+    expect 2 "zero-area triangle.*triangle 4 has zero area \(points 0, 1, 4 are collinear\)" check "$tmp/flat.off"
+    off twice "$tet_points" "$tet_faces;3 2 1"
+    expect 2 "1 duplicate triangle; first: triangles 3 and 4" check "$tmp/twice.off"
+    off cross "0 0 0;2 0 0;0 2 0;0.5 0.5 -1;0.5 0.5 1;3 3 0" "0 1 2;3 4 5"
+    expect 2 "intersecting triangle pair; first: triangles 0 and 1 intersect" check --allow-open "$tmp/cross.off"
+    off duppts "$tet_points;0 0 1" "0 2 1;0 1 3;0 4 2;1 2 3"
+    expect 2 "1 duplicate point; first: points 3 and 4 are identical \(0, 0, 1\)" check "$tmp/duppts.off" &&
+        report_has "merge each duplicate point"
+    # Two tetrahedra sharing an edge; two touching at a vertex: legal.
+    off book "$tet_points;0 -1 0;0 0 -1" "$tet_faces;0 4 1;0 1 5;0 5 4;1 4 5"
+    expect 0 "" check "$tmp/book.off" && report_has "non-manifold edges +1" &&
+        report_has "edge 0-1 \(first triangle 0\)" && report_has "2 closed shells: 2 with outward normals"
+    off tips "$tet_points;-1 0 0;0 -1 0;0 0 -1" "$tet_faces;0 4 5;0 6 4;0 5 6;4 6 5"
+    expect 0 "" check "$tmp/tips.off" && report_has "non-manifold vertices +1" && report_has "point 0 \(its triangles"
+}
+
+# One line per invalid file: name, exit code, what stderr must name, and a
+# pattern the report must match.
+invalid_expectations() {
+    cat <<'EOF'
+degenerate-sliding-triangles.off|2|4 zero-area triangles|intersecting triangle pairs +3
+degenerate-zero-area-sphere.off|2|1 zero-area triangle|zero-area triangles +1
+duplicate-vertices-oblong.off|2|2 duplicate points; first: points 66 and 93 are identical|duplicate points +2
+nonmanifold-edges-beetle.off|2|intersecting triangle pairs|non-manifold edges +47
+nonmanifold-selfintersect-dragon.off|2|duplicate triangles.*intersecting triangle pairs|non-manifold edges +803
+open-blub.off|2|64 open edges|open edges +64
+open-cube.off|2|4 open edges|open edges +4
+selfintersect-cones.off|2|5 intersecting triangle pairs|intersecting triangle pairs +5
+selfintersect-elk.off|2|7 intersecting triangle pairs|intersecting triangle pairs +7
+EOF
+}
+
+run_shared() {
+    data=$1
+    for f in "$data"/invalid/*; do
+        name=$(basename "$f")
+        line=$(invalid_expectations | grep "^$name|" || true)
+        if [ -z "$line" ]; then  # a new file: rejected with a named defect
+            expect 2 "not usable for boundary recovery: [0-9]+ " check "$f"
+            continue
+        fi
+        code=$(echo "$line" | cut -d'|' -f2)
+        names=$(echo "$line" | cut -d'|' -f3)
+        report=$(echo "$line" | cut -d'|' -f4)
+        expect "$code" "^cbr check: .*$name: not usable for boundary recovery: .*$names" check "$f" &&
+            report_has "$report"
+    done
+    # Open surfaces are legal for recovery: accepted on request.
+    expect 0 "" check --allow-open "$data/invalid/open-cube.off"
+    expect 0 "" check --allow-open "$data/invalid/open-blub.off"
+
+    for f in "$data"/surfaces/*; do
+        expect 0 "" check "$f" && report_has "^result: ok, usable for boundary recovery"
+    done
+    expect 0 "" check "$data/surfaces/cgal-tetrahedron-inward.off" && report_has "INWARD normals"
+    expect 0 "" check "$data/surfaces/cgal-cube-shuffled.off" && report_has "orientation +NOT consistent"
+    expect 0 "" check "$data/surfaces/nonmanifold-vertex-hourglass.off" && report_has "non-manifold vertices +1"
+    expect 0 "" check "$data/surfaces/nonmanifold-edge-two-tets.off" && report_has "non-manifold edges +1"
+    expect 0 "" check "$data/surfaces/thingicsg-openscad-example016.off" && report_has "connected components +2"
+}
+
+case $mode in
+local)
+    [ $# -eq 3 ] || { echo "usage: $0 local <cbr> <io data dir>" >&2; exit 2; }
+    run_local "$3"
+    ;;
+shared)
+    data=${CBR_SHARED_DATA_DIR:-${3:-}}
+    if [ -z "$data" ] || [ ! -d "$data/invalid" ] || [ ! -d "$data/surfaces" ]; then
+        echo "SKIP: no shared data directory (${data:-unset})"
+        exit 77
+    fi
+    run_shared "$data"
+    ;;
+*)
+    echo "unknown mode '$mode'" >&2
+    exit 2
+    ;;
+esac
+
+if [ "$failures" -ne 0 ]; then
+    echo "$failures of $checks checks failed"
+    exit 1
+fi
+echo "OK: $checks checks"

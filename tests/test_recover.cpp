@@ -1,0 +1,169 @@
+// Boundary recovery, the parts that do not need flips yet: constraint faces
+// found after Delaunay, region classification, missing faces reported.
+#include <doctest/doctest.h>
+
+#include <set>
+
+#include "delaunay/delaunay.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/mesh_check.hpp"
+#include "recover/constraint_faces.hpp"
+#include "recover/recovery.hpp"
+#include "recover/regions.hpp"
+#include "test_util.hpp"
+
+using cbr::mesh::TetId;
+using cbr::mesh::TetMesh;
+using cbr::mesh::VertexId;
+using cbr::recover::ConstraintFaces;
+using cbr::recover::Triangle;
+
+namespace {
+
+// The faces between tetrahedra inside and outside `inside`, oriented with
+// their normal pointing out of `inside`: a closed surface whose every
+// triangle is a face of the mesh.
+std::vector<Triangle> boundary_of(const TetMesh& m, const std::vector<char>& inside,
+                                  std::vector<TetId>* inner_tets = nullptr) {
+    std::vector<Triangle> tris;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || !inside[t]) continue;
+        for (int f = 0; f < 4; ++f) {
+            const TetId n = cbr::mesh::facet_tet(m.neighbor(t, f));
+            if (inside[n]) continue;
+            const VertexId* v = m.vertices(t);
+            // kFaceVertices faces into t: reverse it to face out.
+            tris.push_back({v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][2]],
+                            v[cbr::mesh::kFaceVertices[f][1]]});
+            if (inner_tets) inner_tets->push_back(t);
+        }
+    }
+    return tris;
+}
+
+std::vector<char> tets_within(const TetMesh& m, const double centre[3], double radius) {
+    std::vector<char> inside(m.slot_count(), 0);
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        double c[3] = {0, 0, 0};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) c[k] += m.point(m.vertex(t, i))[k] / 4;
+        const double d2 = (c[0] - centre[0]) * (c[0] - centre[0]) + (c[1] - centre[1]) * (c[1] - centre[1]) +
+                          (c[2] - centre[2]) * (c[2] - centre[2]);
+        inside[t] = d2 < radius * radius;
+    }
+    return inside;
+}
+
+double volume(const TetMesh& m, TetId t) {
+    const double* a = m.point(m.vertex(t, 0));
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = m.point(m.vertex(t, 1))[k] - a[k];
+        v[k] = m.point(m.vertex(t, 2))[k] - a[k];
+        w[k] = m.point(m.vertex(t, 3))[k] - a[k];
+    }
+    return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6;
+}
+
+}  // namespace
+
+TEST_CASE("a surface made of Delaunay faces is recovered as is, and its regions found") {
+    cbr::delaunay::Delaunay d;
+    const auto xyz = cbr::test::random_points(3000, 77);
+    REQUIRE(d.insert_points(xyz.data(), 3000).ok);
+    TetMesh& m = d.mesh_for_update();
+    const double centre[3] = {0.5, 0.5, 0.5};
+    const std::vector<char> inside = tets_within(m, centre, 0.3);
+    const ConstraintFaces faces(boundary_of(m, inside), {});
+    REQUIRE(faces.size() > 100);
+
+    cbr::recover::RecoveryStats stats;
+    const auto result = cbr::recover::recover_faces(m, faces, stats);
+    CHECK(result.ok);
+    CHECK(stats.missing_faces == 0);
+    CHECK(result.unrecovered.empty());
+
+    const auto regions = cbr::recover::classify_regions(m, faces);
+    REQUIRE(regions.count >= 2);
+    double inside_volume = 0, region_volume = 0;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        if (m.is_ghost(t)) {
+            CHECK(regions.of_tet[t] == 0);
+            continue;
+        }
+        if (inside[t]) inside_volume += volume(m, t);
+        if (regions.of_tet[t] > 0) region_volume += volume(m, t);
+        // Across an input triangle the regions differ; elsewhere they agree.
+        for (int f = 0; f < 4; ++f) {
+            const TetId n = cbr::mesh::facet_tet(m.neighbor(t, f));
+            if (m.is_constrained(t, f)) CHECK(regions.of_tet[t] != regions.of_tet[n]);
+            else CHECK(regions.of_tet[t] == regions.of_tet[n]);
+        }
+        // Constraint marks are exactly the input triangles.
+        for (int f = 0; f < 4; ++f) {
+            const VertexId* v = m.vertices(t);
+            const bool is_input = faces.find(v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][1]],
+                                             v[cbr::mesh::kFaceVertices[f][2]]) != ConstraintFaces::npos;
+            CHECK(m.is_constrained(t, f) == is_input);
+        }
+    }
+    CHECK(region_volume == doctest::Approx(inside_volume).epsilon(1e-12));
+}
+
+TEST_CASE("region numbers follow the input, not the storage") {
+    // Two disjoint balls of tetrahedra: the one bounded by triangle 0 on its
+    // normal's side is region 1.
+    cbr::delaunay::Delaunay d;
+    const auto xyz = cbr::test::random_points(4000, 5);
+    REQUIRE(d.insert_points(xyz.data(), 4000).ok);
+    TetMesh& m = d.mesh_for_update();
+    const double c1[3] = {0.25, 0.5, 0.5}, c2[3] = {0.75, 0.5, 0.5};
+    std::vector<char> in1 = tets_within(m, c1, 0.15), in2 = tets_within(m, c2, 0.15);
+    std::vector<TetId> behind2, behind1;
+    std::vector<Triangle> tris = boundary_of(m, in2, &behind2);
+    const std::vector<Triangle> first = boundary_of(m, in1, &behind1);
+    tris.insert(tris.end(), first.begin(), first.end());
+    const ConstraintFaces faces(tris, {});
+    cbr::recover::RecoveryStats stats;
+    REQUIRE(cbr::recover::recover_faces(m, faces, stats).ok);
+    const auto regions = cbr::recover::classify_regions(m, faces);
+    // Ball 2 is listed first: the tetrahedron behind triangle 0 (on side 1,
+    // the normals point out) is region 1; ball 1 comes later.
+    CHECK(regions.of_tet[behind2.front()] == 1);
+    CHECK(regions.of_tet[behind1.front()] > 1);
+    // Classifying again gives the same numbers (no dependence on state).
+    CHECK(cbr::recover::classify_regions(m, faces).of_tet == regions.of_tet);
+}
+
+TEST_CASE("missing faces are reported, never hidden: the Schonhardt prism") {
+    const cbr::test::Polyhedron prism = cbr::test::schonhardt_prism();
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(prism.xyz.data(), 6).ok);
+    std::vector<Triangle> tris;
+    for (std::size_t i = 0; i < prism.tris.size(); i += 3) {
+        Triangle t;
+        for (int k = 0; k < 3; ++k) t[k] = d.internal_id(static_cast<VertexId>(prism.tris[i + k]));
+        tris.push_back(t);
+    }
+    const ConstraintFaces faces(tris, {});
+    cbr::recover::RecoveryStats stats;
+    const auto result = cbr::recover::recover_faces(d.mesh_for_update(), faces, stats);
+    CHECK_FALSE(result.ok);
+    CHECK(stats.missing_faces > 0);
+    CHECK(result.unrecovered.size() == stats.missing_faces);
+    // Each reported triangle really is absent, each other one present.
+    const std::set<std::size_t> missing(result.unrecovered.begin(), result.unrecovered.end());
+    const TetMesh& m = d.mesh();
+    std::set<std::size_t> present;
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        for (int f = 0; f < 4; ++f)
+            if (!m.is_free(t)) {
+                const VertexId* v = m.vertices(t);
+                const std::size_t i = faces.find(v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][1]],
+                                                 v[cbr::mesh::kFaceVertices[f][2]]);
+                if (i != ConstraintFaces::npos) present.insert(i);
+            }
+    for (std::size_t i = 0; i < faces.size(); ++i) CHECK((missing.count(i) == 1) != (present.count(i) == 1));
+}
