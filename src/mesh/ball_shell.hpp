@@ -1,0 +1,44 @@
+// Ball of a vertex and shell of an edge (§5.1: Ball(P) is the set of
+// tetrahedra incident to P; the shell of an edge is the ring of
+// tetrahedra around it), found by walking neighbours from one incident
+// tetrahedron. kGhostVertex is a vertex like the others: its ball is the
+// set of ghosts, the shell of a hull edge contains two ghosts.
+#pragma once
+
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::mesh {
+
+// Position of v in t (0..3), or -1.
+int vertex_index(const TetMesh& m, TetId t, VertexId v);
+
+// Every tetrahedron incident to v, `start` first, then in breadth-first
+// order. False (and `out` empty) when `start` is not a live tetrahedron
+// containing v.
+bool ball(const TetMesh& m, VertexId v, TetId start, std::vector<TetId>& out);
+
+// The shell of edge uv in rotation order: tets[i] has the vertices u, v,
+// ring[i], ring[i+1 mod n], and (u, v, ring[i], ring[i+1]) is an even
+// permutation of its stored order, i.e. positively oriented when finite
+// (the ring turns counter-clockwise seen from v). tets[0] is the start.
+struct Shell {
+    std::vector<TetId> tets;
+    std::vector<VertexId> ring;
+    std::size_t size() const { return tets.size(); }
+    bool has_ghost() const;
+};
+// False (and `out` empty) when `start` is not a live tetrahedron containing
+// u and v (u != v).
+bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out);
+
+// A tetrahedron containing edge uv, found in the ball of u (`start`
+// contains u); kNoTet when uv is not an edge.
+TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v);
+
+// One live tetrahedron per vertex (a finite one when the vertex has any;
+// kNoTet for a vertex in no tetrahedron), in one pass over the mesh.
+std::vector<TetId> incident_tets(const TetMesh& m);
+
+}  // namespace cbr::mesh

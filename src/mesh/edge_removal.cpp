@@ -1,0 +1,146 @@
+// Edge removal's choice of ring triangulation (Shewchuk's dynamic program)
+// and the quality measure it maximizes.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geom/predicates.hpp"
+#include "mesh/flips.hpp"
+
+namespace cbr::mesh {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Scores of the tetrahedra a triangulation of the shell's ring would make.
+class RingScorer {
+public:
+    RingScorer(const TetMesh& m, VertexId u, VertexId v, const Shell& s) : m_(m), u_(u), v_(v), ring_(s.ring) {
+        for (VertexId x : ring_)
+            if (x != kGhostVertex) finite_.push_back(x);
+        for (VertexId x : {u, v})
+            if (x != kGhostVertex) finite_.push_back(x);
+    }
+
+    // Ring triangle (i, k, j) in ring order: the worse of (ri, rk, rj, v)
+    // and (ri, rj, rk, u).
+    double triangle(int i, int k, int j) const {
+        const VertexId a = ring_[static_cast<std::size_t>(i)], b = ring_[static_cast<std::size_t>(k)],
+                       c = ring_[static_cast<std::size_t>(j)];
+        const double first = tet(a, b, c, v_);
+        return first == -kInf ? first : std::min(first, tet(a, c, b, u_));
+    }
+
+private:
+    double tet(VertexId a, VertexId b, VertexId c, VertexId d) const {
+        const VertexId t[4] = {a, b, c, d};
+        for (int g = 0; g < 4; ++g)
+            if (t[g] == kGhostVertex) return ghost(t, g);
+        return tet_quality(m_.point(a), m_.point(b), m_.point(c), m_.point(d));
+    }
+
+    // A ghost is neutral (+inf) when its hull face has every finite vertex
+    // of the shell on its inner side (or on it): the rule replace_tets
+    // applies to the region's vertices; -inf otherwise.
+    double ghost(const VertexId t[4], int g) const {
+        // Hull face (p, q, r) with the ghost at position 3, by the even
+        // permutation that replace_tets uses.
+        VertexId f[4] = {t[0], t[1], t[2], t[3]};
+        if (g != 3) {
+            std::swap(f[g], f[3]);
+            std::swap(f[(g + 1) % 3], f[(g + 2) % 3]);
+        }
+        for (VertexId x : finite_)
+            if (geom::orient3d(m_.point(f[0]), m_.point(f[1]), m_.point(f[2]), m_.point(x)) > 0) return -kInf;
+        return kInf;
+    }
+
+    const TetMesh& m_;
+    VertexId u_, v_;
+    const std::vector<VertexId>& ring_;
+    std::vector<VertexId> finite_;
+};
+
+// best(i, j): the best worst-quality over triangulations of the sub-polygon
+// r_i .. r_j closed by the chord (i, j); split(i, j): its apex k.
+struct RingDp {
+    std::size_t n;
+    std::vector<double> best;
+    std::vector<int> split;
+    explicit RingDp(std::size_t size) : n(size), best(size * size, kInf), split(size * size, -1) {}
+    double& at(int i, int j) { return best[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
+    int& apex(int i, int j) { return split[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
+};
+
+void solve(RingDp& dp, const RingScorer& score) {
+    const int n = static_cast<int>(dp.n);
+    for (int len = 2; len < n; ++len) {
+        for (int i = 0; i + len < n; ++i) {
+            const int j = i + len;
+            double best = -kInf;
+            for (int k = i + 1; k < j; ++k) {
+                double q = std::min(dp.at(i, k), dp.at(k, j));
+                if (q <= best) continue;  // cannot beat the best so far
+                q = std::min(q, score.triangle(i, k, j));
+                if (q > best) {
+                    best = q;
+                    dp.apex(i, j) = k;
+                }
+            }
+            dp.at(i, j) = best;
+        }
+    }
+}
+
+std::vector<RingTriangle> extract(RingDp& dp) {
+    std::vector<RingTriangle> triangles;
+    std::vector<std::pair<int, int>> todo = {{0, static_cast<int>(dp.n) - 1}};
+    while (!todo.empty()) {
+        const auto [i, j] = todo.back();
+        todo.pop_back();
+        if (j - i < 2) continue;
+        const int k = dp.apex(i, j);
+        triangles.push_back({i, k, j});
+        todo.push_back({i, k});
+        todo.push_back({k, j});
+    }
+    return triangles;
+}
+
+}  // namespace
+
+double tet_quality(const double* a, const double* b, const double* c, const double* d) {
+    if (geom::orient3d(a, b, c, d) <= 0) return -kInf;
+    double e[3][3];  // b - a, c - a, d - a
+    for (int k = 0; k < 3; ++k) {
+        e[0][k] = b[k] - a[k];
+        e[1][k] = c[k] - a[k];
+        e[2][k] = d[k] - a[k];
+    }
+    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    double sum = 0;  // squared lengths of the six edges
+    for (int k = 0; k < 3; ++k) {
+        const double bc = c[k] - b[k], bd = d[k] - b[k], cd = d[k] - c[k];
+        sum += e[0][k] * e[0][k] + e[1][k] * e[1][k] + e[2][k] * e[2][k] + bc * bc + bd * bd + cd * cd;
+    }
+    // 6 V = det; the regular tetrahedron scores 1. The sign is the exact
+    // one: a positive tetrahedron whose rounded det is not positive still
+    // ranks above every invalid one.
+    const double q = 12.0 * std::sqrt(3.0) * det / (sum * std::sqrt(sum));
+    return q > 0 ? q : std::numeric_limits<double>::min();
+}
+
+std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                                  double* min_quality) {
+    if (shell.size() < 3) return {};
+    RingDp dp(shell.size());
+    solve(dp, RingScorer(m, u, v, shell));
+    const double best = dp.at(0, static_cast<int>(shell.size()) - 1);
+    if (min_quality) *min_quality = best;
+    if (best == -kInf) return {};
+    return extract(dp);
+}
+
+}  // namespace cbr::mesh

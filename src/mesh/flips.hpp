@@ -1,0 +1,94 @@
+// Flips (§5.1, Definition 5.6: Swap23, Swap32, Swap44) and edge removal
+// (Definition 5.8, the shell transformation; Shewchuk's edge removal), all
+// through replace_tets: a flip is done only when every new tetrahedron is
+// positively oriented (exact), no constraint face is removed (replace_tets
+// refuses) and no protected edge disappears (the caller's callback).
+//
+// Ghosts: kGhostVertex is treated as any other apex or ring vertex; the
+// convexity rule of replace_tets accepts a flip touching the hull only when
+// the hull stays convex (e.g. the 2-2 flip of a flat hull quadrilateral,
+// which is a 4-4 flip with two ghosts).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "mesh/ball_shell.hpp"
+#include "mesh/surgery.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::mesh {
+
+enum class FlipResult {
+    kDone,
+    kNotApplicable,        // not the configuration of this flip (shell size, no coplanar diagonal, bad ids)
+    kProtectedEdge,        // the edge that would disappear is protected
+    kNoValidTriangulation, // edge removal: every ring triangulation has an inverted tetrahedron
+    kRemovesConstraint,    // replace_tets: a constraint face would disappear
+    kInverted,             // replace_tets: a new tetrahedron is not positively oriented
+    kNotConvex,            // replace_tets: the hull would not stay convex
+};
+
+const char* to_string(FlipResult r);
+
+// Called with the endpoints of an edge that a flip would remove (either
+// order; one may be kGhostVertex); true forbids the flip. Empty: nothing
+// is protected.
+using EdgeProtect = std::function<bool(VertexId, VertexId)>;
+
+// Swap23 on face f of t: t = (a, b, c, d) with face abc, its neighbour
+// (a, b, c, e) → deab, debc, deca (valid when de crosses the interior of
+// abc). No edge disappears: `protect` is accepted for a uniform signature
+// and never called. `created`: the three new tetrahedra.
+FlipResult flip23(TetMesh& m, TetId t, int f, const EdgeProtect& protect = {},
+                  std::vector<TetId>* created = nullptr);
+
+// Swap32 on edge uv (t contains it) whose shell has exactly three
+// tetrahedra, with ring r0 r1 r2 → r0 r1 r2 v and r0 r2 r1 u (valid when uv
+// crosses the interior of r0 r1 r2).
+FlipResult flip32(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
+                  std::vector<TetId>* created = nullptr);
+
+// Swap44 on edge uv whose shell has four tetrahedra, with ring r0 r1 r2 r3
+// where u, v, ri, ri+2 are coplanar: the planar quadrilateral u ri v ri+2
+// swaps its diagonal uv for ri ri+2 (the four tetrahedra around ri ri+2).
+// kNotApplicable when neither pair of opposite ring vertices is coplanar
+// with uv (remove_edge handles the general shell of four).
+FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
+                  std::vector<TetId>* created = nullptr);
+
+// Edge removal: the shell of uv (n >= 3 tetrahedra, ring r0..r(n-1)) is
+// replaced by 2(n-2) tetrahedra: a triangulation of the ring polygon
+// coned to u and to v, the one that maximizes the minimum tet_quality
+// (dynamic programming over the polygon, O(n^3)). A ghost in the ring or
+// as an endpoint is allowed; ghost tetrahedra then count as quality +inf
+// when they satisfy the convexity rule against the shell's vertices, -inf
+// otherwise. kNoValidTriangulation when no triangulation has every
+// tetrahedron valid.
+FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
+                       std::vector<TetId>* created = nullptr);
+
+// A triangle of the ring polygon: three indices into Shell::ring in cyclic
+// ring order (each a rotation of i < j < k).
+using RingTriangle = std::array<int, 3>;
+
+// The shell transformation (Definition 5.8) with a given triangulation of
+// the ring: every triangle (ri, rj, rk) gives (ri, rj, rk, v) and (ri, rk,
+// rj, u). `shell` must be the current shell of uv (from shell()). Does not
+// consult a protection callback. kNotApplicable when the triangles do not
+// triangulate the ring polygon.
+FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                           const std::vector<RingTriangle>& triangles, std::vector<TetId>* created = nullptr);
+
+// The triangulation of the ring that remove_edge would use (empty when
+// none is valid), and its minimum quality.
+std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                                  double* min_quality = nullptr);
+
+// Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
+// lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when
+// orient3d(a, b, c, d) > 0 (exact), -infinity otherwise.
+double tet_quality(const double* a, const double* b, const double* c, const double* d);
+
+}  // namespace cbr::mesh

@@ -1,0 +1,66 @@
+// Mesh surgery: replace a set of tetrahedra by another set that tiles the
+// same region. The one mechanism behind every local change of the mesh:
+// the flips of §5.1 (Definition 5.6 Swap23/32/44, Definition 5.8 shell
+// transformation), the cap and ball transformations, Steiner point
+// insertion and suppression.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::mesh {
+
+// Why replace_tets refused; the checks run in this order and the first one
+// that fails is reported.
+enum class ReplaceResult {
+    kDone,
+    // An old id that is not a live tetrahedron or is listed twice; empty
+    // `old` or `fresh`; a fresh tetrahedron with a vertex id out of range or
+    // a repeated vertex.
+    kBadInput,
+    // `fresh` does not tile the region of `old`: its unshared faces are not
+    // exactly the boundary faces of `old` (as vertex sets, same orientation),
+    // or a face is shared by more than two fresh tetrahedra or by two with
+    // the same orientation.
+    kNotTiling,
+    // A constraint face interior to `old` would not be a face of `fresh`.
+    kRemovesConstraint,
+    // A finite fresh tetrahedron is not positively oriented (exact).
+    kInverted,
+    // A fresh ghost would leave the hull non-convex (or a ghost's hull face
+    // would border another ghost).
+    kNotConvex,
+};
+
+const char* to_string(ReplaceResult r);
+
+// Replaces the tetrahedra `old` (live; normally a connected region) by
+// `fresh` (4 vertex ids each; kGhostVertex allowed once per tetrahedron, in
+// any position: it is moved to position 3 by an even permutation). On
+// kDone: the slots of `old` are reused in order, then new slots taken;
+// surplus old slots are freed; every neighbour link is set, the outside
+// neighbours' back links included; constraint marks are kept: boundary
+// faces carry the mark they had in `old` (outside neighbours keep theirs)
+// and a constraint face interior to `old` stays marked on both sides.
+// `created` (optional) receives the fresh tetrahedra's ids in the order of
+// `fresh`; scratch marks (kFlagMarkA/B) of the fresh tetrahedra are clear.
+//
+// Checks, all exact (see ReplaceResult): face matching by sorted vertex
+// triples with orientation parity (O(k log k) for k faces); orient3d > 0
+// for finite fresh tetrahedra; for every fresh ghost (a, b, c, oo), the
+// hull stays locally convex: orient3d(a, b, c, x) <= 0 for every finite
+// vertex x of `old`, and for the far vertex x of each neighbouring hull
+// face (across its three hull edges, fresh or outside: this catches a new
+// vertex outside the hull that would see more than the faces replaced);
+// and its hull face borders a finite tetrahedron.
+//
+// On any result but kDone the mesh is unchanged. Exceptions: std::bad_alloc
+// from the checks leaves the mesh unchanged; from the slot allocation, the
+// slots taken so far are given back (flagged free).
+ReplaceResult replace_tets(TetMesh& m, const std::vector<TetId>& old,
+                           const std::vector<std::array<VertexId, 4>>& fresh,
+                           std::vector<TetId>* created = nullptr);
+
+}  // namespace cbr::mesh

@@ -1,0 +1,873 @@
+// Mesh surgery (replace_tets), flips (§5.1 Definition 5.6 Swap23/32/44,
+// Definition 5.8 shell transformation / edge removal), ball and shell.
+// After every successful operation the whole mesh is checked exactly
+// (check_mesh: orientation, symmetric adjacency, closed hull), plus here:
+// the hull stays convex, the volume is unchanged, constraint marks are
+// symmetric and their set never changes; every refusal leaves the arrays
+// bit-identical.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+#include <set>
+
+#include "delaunay/delaunay.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "mesh/flips.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh/surgery.hpp"
+#include "test_util.hpp"
+
+using namespace cbr::mesh;
+
+namespace {
+
+using Tet = std::array<VertexId, 4>;
+using Key3 = std::array<VertexId, 3>;
+using Rng = std::mt19937_64;
+
+// --- building meshes --------------------------------------------------------
+
+TetMesh delaunay_mesh(const std::vector<double>& xyz) {
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(xyz.data(), xyz.size() / 3).ok);
+    return d.mesh();
+}
+
+Key3 face_key(const TetMesh& m, TetId t, int f) {
+    Key3 k = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]), m.vertex(t, kFaceVertices[f][2])};
+    std::sort(k.begin(), k.end());
+    return k;
+}
+
+// A mesh from positively oriented finite tetrahedra: ghosts close every
+// unshared face, links by matching faces.
+TetMesh build_mesh(const std::vector<double>& xyz, const std::vector<Tet>& tets) {
+    TetMesh m;
+    m.add_points(xyz.data(), xyz.size() / 3);
+    std::map<Key3, std::vector<FacetRef>> faces;
+    for (const Tet& v : tets) {
+        const TetId t = m.allocate_tet();
+        m.set_vertices(t, v[0], v[1], v[2], v[3]);
+        for (int f = 0; f < 4; ++f) faces[face_key(m, t, f)].push_back(make_facet(t, f));
+    }
+    std::vector<std::pair<TetId, int>> hull;
+    for (const auto& [key, refs] : faces)
+        if (refs.size() == 1) hull.push_back({facet_tet(refs[0]), facet_face(refs[0])});
+    for (const auto& [t, f] : hull) {
+        const TetId g = m.allocate_tet();  // (a, c, b, oo): oo on the outer side
+        m.set_vertices(g, m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][2]),
+                       m.vertex(t, kFaceVertices[f][1]), kGhostVertex);
+        for (int h = 0; h < 4; ++h) faces[face_key(m, g, h)].push_back(make_facet(g, h));
+    }
+    for (const auto& [key, refs] : faces) {
+        REQUIRE(refs.size() == 2);
+        m.link(refs[0], refs[1]);
+    }
+    return m;
+}
+
+// --- whole-mesh observations ------------------------------------------------
+
+// Every hull edge convex or flat: the far vertex of the neighbouring hull
+// face is not above a ghost's hull face.
+bool hull_convex(const TetMesh& m) {
+    for (TetId g = 0; g < m.slot_count(); ++g) {
+        if (m.is_free(g) || !m.is_ghost(g)) continue;
+        for (int f = 0; f < 3; ++f) {
+            const FacetRef r = m.neighbor(g, f);
+            const double* e = m.point(m.vertex(facet_tet(r), facet_face(r)));
+            if (cbr::geom::orient3d(m.point(m.vertex(g, 0)), m.point(m.vertex(g, 1)), m.point(m.vertex(g, 2)), e) > 0)
+                return false;
+        }
+    }
+    return true;
+}
+
+long double six_volume(const TetMesh& m) {
+    long double sum = 0;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        long double e[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k)
+                e[i][k] = static_cast<long double>(m.point(m.vertex(t, i + 1))[k]) - m.point(m.vertex(t, 0))[k];
+        sum += e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    }
+    return sum;
+}
+
+std::set<Tet> tet_keys(const TetMesh& m) {
+    std::set<Tet> s;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        Tet v = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+        std::sort(v.begin(), v.end());
+        s.insert(v);
+    }
+    return s;
+}
+
+bool has_edge(const TetMesh& m, VertexId u, VertexId v) {
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t) && vertex_index(m, t, u) >= 0 && vertex_index(m, t, v) >= 0) return true;
+    return false;
+}
+
+// Marked faces by vertex set; `symmetric` false when a mark is one-sided.
+std::set<Key3> marked_faces(const TetMesh& m, bool* symmetric = nullptr) {
+    std::set<Key3> s;
+    if (symmetric) *symmetric = true;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        for (int f = 0; f < 4; ++f) {
+            if (!m.is_constrained(t, f)) continue;
+            s.insert(face_key(m, t, f));
+            const FacetRef r = m.neighbor(t, f);
+            if (symmetric && !m.is_constrained(facet_tet(r), facet_face(r))) *symmetric = false;
+        }
+    }
+    return s;
+}
+
+void mark_face(TetMesh& m, TetId t, int f) {
+    const FacetRef r = m.neighbor(t, f);
+    m.set_constrained(t, f, true);
+    m.set_constrained(facet_tet(r), facet_face(r), true);
+}
+
+// All the arrays, slot by slot, for bit-identity checks.
+struct Snapshot {
+    std::vector<std::array<std::uint32_t, 9>> rows;
+    std::size_t free_count = 0;
+    std::vector<double> coords;
+    explicit Snapshot(const TetMesh& m) : free_count(m.free_count()), coords(m.coordinates()) {
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            rows.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.neighbor(t, 0),
+                            m.neighbor(t, 1), m.neighbor(t, 2), m.neighbor(t, 3), m.flags(t)});
+    }
+    bool operator==(const Snapshot& o) const {
+        return rows == o.rows && free_count == o.free_count && coords == o.coords;
+    }
+};
+
+void require_valid(const TetMesh& m) {
+    const CheckReport report = check_mesh(m);
+    for (const auto& e : report.errors) MESSAGE(e);
+    REQUIRE(report.ok());
+    REQUIRE(hull_convex(m));
+}
+
+TetId random_live(const TetMesh& m, Rng& rng) {
+    for (;;) {
+        const TetId t = static_cast<TetId>(rng() % m.slot_count());
+        if (!m.is_free(t)) return t;
+    }
+}
+
+// --- random flips -----------------------------------------------------------
+
+enum Kind { k23, k32, k44, kRemove, kKinds };
+
+struct Tally {
+    int done[kKinds] = {};
+    int hull_done = 0;      // flips whose region contained a ghost
+    int marks_carried = 0;  // flips that created a tetrahedron with a marked face
+};
+
+// One random flip of the given kind; `hull`: the region touched the hull.
+FlipResult random_flip(TetMesh& m, Rng& rng, Kind kind, bool& hull, std::vector<TetId>& created) {
+    const TetId t = random_live(m, rng);
+    if (kind == k23) {
+        const int f = static_cast<int>(rng() % 4);
+        hull = m.is_ghost(t) || m.is_ghost(facet_tet(m.neighbor(t, f)));
+        return flip23(m, t, f, {}, &created);
+    }
+    const int i = static_cast<int>(rng() % 4), j = (i + 1 + static_cast<int>(rng() % 3)) % 4;
+    const VertexId u = m.vertex(t, i), v = m.vertex(t, j);
+    Shell s;
+    REQUIRE(shell(m, u, v, t, s));
+    hull = s.has_ghost() || u == kGhostVertex || v == kGhostVertex;
+    if (kind == k32) return flip32(m, t, u, v, {}, &created);
+    if (kind == k44) return flip44(m, t, u, v, {}, &created);
+    return remove_edge(m, t, u, v, {}, &created);
+}
+
+bool created_marked(const TetMesh& m, const std::vector<TetId>& created) {
+    for (TetId t : created)
+        for (int f = 0; f < 4; ++f)
+            if (m.is_constrained(t, f)) return true;
+    return false;
+}
+
+// `attempts` random flips; every success is checked in full, every refusal
+// must leave the mesh bit-identical.
+Tally random_flips(TetMesh& m, int attempts, std::uint64_t seed) {
+    Rng rng(seed);
+    Tally tally;
+    const long double volume = six_volume(m);
+    bool symmetric = false;
+    const std::set<Key3> marks = marked_faces(m, &symmetric);
+    REQUIRE(symmetric);
+    Snapshot before(m);
+    std::vector<TetId> created;
+    for (int a = 0; a < attempts; ++a) {
+        const Kind kind = static_cast<Kind>(rng() % kKinds);
+        bool hull = false;
+        const FlipResult r = random_flip(m, rng, kind, hull, created);
+        if (r != FlipResult::kDone) {
+            REQUIRE((Snapshot(m) == before));
+            continue;
+        }
+        ++tally.done[kind];
+        tally.hull_done += hull;
+        tally.marks_carried += created_marked(m, created);
+        require_valid(m);
+        REQUIRE(std::fabs(static_cast<double>(six_volume(m) - volume)) <= 1e-9 * static_cast<double>(volume));
+        REQUIRE(marked_faces(m, &symmetric) == marks);
+        REQUIRE(symmetric);
+        before = Snapshot(m);
+    }
+    return tally;
+}
+
+void report(const char* name, const Tally& t) {
+    MESSAGE(std::string(name) << ": 2-3 " << t.done[k23] << ", 3-2 " << t.done[k32] << ", 4-4 " << t.done[k44]
+                              << ", removal " << t.done[kRemove] << ", on the hull " << t.hull_done
+                              << ", marks carried " << t.marks_carried);
+}
+
+// Marks about one interior face in `every` as a constraint, both sides.
+void mark_random_faces(TetMesh& m, int every, std::uint64_t seed) {
+    Rng rng(seed);
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        for (int f = 0; f < 4; ++f)
+            if (rng() % static_cast<unsigned>(every) == 0) mark_face(m, t, f);
+    }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+TEST_CASE("random flips on Delaunay meshes keep the mesh valid") {
+    SUBCASE("random points, some faces constrained") {
+        TetMesh m = delaunay_mesh(cbr::test::random_points(300, 17));
+        mark_random_faces(m, 40, 3);
+        const Tally t = random_flips(m, 12000, 101);
+        report("random points", t);
+        for (int k : {k23, k32, kRemove}) CHECK(t.done[k] > 0);  // no coplanar quadrilateral: no 4-4
+        CHECK(t.marks_carried > 0);
+    }
+    SUBCASE("grid: coplanar everywhere, flat hull") {
+        TetMesh m = delaunay_mesh(cbr::test::grid_points(6));
+        mark_random_faces(m, 60, 4);
+        const Tally t = random_flips(m, 12000, 202);
+        report("grid", t);
+        for (int k = 0; k < kKinds; ++k) CHECK(t.done[k] > 0);
+        CHECK(t.hull_done > 0);  // 2-2 flips of flat hull quadrilaterals, at least
+    }
+}
+
+TEST_CASE("flip23 then flip32 on the new edge gives back the same tetrahedra") {
+    // A pure grid has almost no valid 2-3 flip (its faces are coplanar with
+    // their neighbours'): the second mesh is a grid with random points inside.
+    for (int grid = 0; grid < 2; ++grid) {
+        std::vector<double> xyz = cbr::test::random_points(200, 5, 0.5, 3.5);
+        if (grid) {
+            const auto g = cbr::test::grid_points(5);
+            xyz.insert(xyz.end(), g.begin(), g.end());
+        }
+        TetMesh m = delaunay_mesh(xyz);
+        mark_random_faces(m, 30, 6);
+        Rng rng(7);
+        int pairs = 0;
+        std::vector<TetId> created;
+        // Every pair gives back the same sets: they never change.
+        const auto tets = tet_keys(m);
+        const auto marks = marked_faces(m);
+        for (int a = 0; a < 4000 && pairs < 200; ++a) {
+            const TetId t = random_live(m, rng);
+            const int f = static_cast<int>(rng() % 4);
+            const FacetRef across = m.neighbor(t, f);
+            const VertexId d = m.vertex(t, f), e = m.vertex(facet_tet(across), facet_face(across));
+            if (flip23(m, t, f, {}, &created) != FlipResult::kDone) continue;
+            REQUIRE(created.size() == 3);
+            REQUIRE(has_edge(m, d, e));
+            REQUIRE(flip32(m, created[0], d, e) == FlipResult::kDone);
+            REQUIRE(tet_keys(m) == tets);
+            REQUIRE(marked_faces(m) == marks);
+            require_valid(m);
+            ++pairs;
+        }
+        CHECK(pairs == 200);
+    }
+}
+
+TEST_CASE("replace_tets refusals leave the mesh bit-identical") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(150, 9));
+    Rng rng(11);
+    // A face whose 2-3 flip is valid, and one whose flip inverts a tetrahedron.
+    TetId good_t = kNoTet, bad_t = kNoTet;
+    int good_f = 0, bad_f = 0;
+    while (good_t == kNoTet || bad_t == kNoTet) {
+        const TetId t = random_live(m, rng);
+        const int f = static_cast<int>(rng() % 4);
+        if (m.is_ghost(t) || m.is_ghost(facet_tet(m.neighbor(t, f)))) continue;
+        TetMesh copy = m;
+        const FlipResult r = flip23(copy, t, f);
+        if (r == FlipResult::kDone) good_t = t, good_f = f;
+        if (r == FlipResult::kInverted) bad_t = t, bad_f = f;
+    }
+    // The 2-3 region and fresh set of face f of t.
+    auto flip_sets = [&](TetId t, int f, std::vector<TetId>& old, std::vector<Tet>& fresh) {
+        const FacetRef across = m.neighbor(t, f);
+        const VertexId a = m.vertex(t, kFaceVertices[f][0]), b = m.vertex(t, kFaceVertices[f][1]),
+                       c = m.vertex(t, kFaceVertices[f][2]), d = m.vertex(t, f),
+                       e = m.vertex(facet_tet(across), facet_face(across));
+        old = {t, facet_tet(across)};
+        fresh = {{a, b, e, d}, {b, c, e, d}, {c, a, e, d}};
+    };
+    std::vector<TetId> old;
+    std::vector<Tet> fresh;
+    const Snapshot before(m);
+    auto refused = [&](ReplaceResult expected) {
+        CHECK(replace_tets(m, old, fresh) == expected);
+        CHECK((Snapshot(m) == before));
+    };
+
+    SUBCASE("fresh sets that do not tile the region") {
+        flip_sets(good_t, good_f, old, fresh);
+        fresh.pop_back();  // a hole
+        refused(ReplaceResult::kNotTiling);
+        flip_sets(good_t, good_f, old, fresh);
+        std::swap(fresh[0][0], fresh[0][1]);  // one tetrahedron turned inside out: faces mismatch
+        refused(ReplaceResult::kNotTiling);
+        flip_sets(good_t, good_f, old, fresh);
+        fresh.push_back(fresh[0]);  // a face shared three times
+        refused(ReplaceResult::kNotTiling);
+        flip_sets(good_t, good_f, old, fresh);
+        old.pop_back();  // the fresh set fills more than the region
+        refused(ReplaceResult::kNotTiling);
+    }
+    SUBCASE("bad input") {
+        flip_sets(good_t, good_f, old, fresh);
+        old.push_back(old[0]);
+        refused(ReplaceResult::kBadInput);
+        flip_sets(good_t, good_f, old, fresh);
+        fresh[1][2] = static_cast<VertexId>(m.vertex_count());
+        refused(ReplaceResult::kBadInput);
+        flip_sets(good_t, good_f, old, fresh);
+        fresh[1][2] = fresh[1][0];
+        refused(ReplaceResult::kBadInput);
+        flip_sets(good_t, good_f, old, fresh);
+        fresh[1][0] = fresh[1][1] = kGhostVertex;
+        refused(ReplaceResult::kBadInput);
+        old.clear();
+        refused(ReplaceResult::kBadInput);
+    }
+    SUBCASE("an inverted fresh tetrahedron") {
+        flip_sets(bad_t, bad_f, old, fresh);
+        refused(ReplaceResult::kInverted);
+        CHECK(flip23(m, bad_t, bad_f) == FlipResult::kInverted);
+        CHECK((Snapshot(m) == before));
+    }
+    SUBCASE("a constraint face would disappear") {
+        mark_face(m, good_t, good_f);
+        const Snapshot marked(m);
+        flip_sets(good_t, good_f, old, fresh);
+        CHECK(replace_tets(m, old, fresh) == ReplaceResult::kRemovesConstraint);
+        CHECK(flip23(m, good_t, good_f) == FlipResult::kRemovesConstraint);
+        CHECK((Snapshot(m) == marked));
+    }
+    SUBCASE("constraint faces on the region's boundary are carried; inside, they block a 3-2") {
+        // Mark the other three faces of t: they bound the 2-3 region.
+        std::set<Key3> boundary;
+        for (int f = 0; f < 4; ++f)
+            if (f != good_f) {
+                mark_face(m, good_t, f);
+                boundary.insert(face_key(m, good_t, f));
+            }
+        const VertexId d = m.vertex(good_t, good_f);
+        const FacetRef across = m.neighbor(good_t, good_f);
+        const VertexId e = m.vertex(facet_tet(across), facet_face(across));
+        std::vector<TetId> created;
+        REQUIRE(flip23(m, good_t, good_f, {}, &created) == FlipResult::kDone);
+        require_valid(m);
+        std::set<Key3> carried;
+        for (TetId t : created)
+            for (int f = 0; f < 4; ++f) {
+                if (!m.is_constrained(t, f)) continue;
+                carried.insert(face_key(m, t, f));
+                const FacetRef r = m.neighbor(t, f);
+                CHECK(m.is_constrained(facet_tet(r), facet_face(r)));  // the outside side kept its mark
+            }
+        CHECK(carried == boundary);
+        // Now a face around the new edge de is a constraint: the 3-2 flip
+        // that would take de away again is refused.
+        int f_de = 0;
+        while (m.vertex(created[0], f_de) == d || m.vertex(created[0], f_de) == e) ++f_de;
+        mark_face(m, created[0], f_de);
+        const Snapshot marked(m);
+        CHECK(flip32(m, created[0], d, e) == FlipResult::kRemovesConstraint);
+        CHECK(remove_edge(m, created[0], d, e) == FlipResult::kRemovesConstraint);
+        CHECK((Snapshot(m) == marked));
+    }
+    SUBCASE("the same flip without the refusals succeeds") {
+        flip_sets(good_t, good_f, old, fresh);
+        std::vector<TetId> created;
+        CHECK(replace_tets(m, old, fresh, &created) == ReplaceResult::kDone);
+        CHECK(created[0] == old[0]);  // old slots reused in order
+        CHECK(created[1] == old[1]);
+        require_valid(m);
+    }
+}
+
+TEST_CASE("flips that would dent the hull are refused") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(100, 13));
+    const Snapshot before(m);
+    int refused23 = 0, refused32 = 0;
+    for (TetId g = 0; g < m.slot_count(); ++g) {
+        if (m.is_free(g) || !m.is_ghost(g)) continue;
+        // 2-3 between a ghost and the finite tetrahedron under its hull face:
+        // the finite tetrahedron would leave the mesh.
+        const FlipResult r = flip23(m, g, 3);
+        CHECK(r == FlipResult::kNotConvex);
+        refused23 += r == FlipResult::kNotConvex;
+        // Hull edges with a shell of three (one finite tetrahedron, two ghosts).
+        for (int i = 0; i < 3; ++i) {
+            Shell s;
+            REQUIRE(shell(m, m.vertex(g, i), m.vertex(g, (i + 1) % 3), g, s));
+            if (s.size() != 3) continue;
+            CHECK(flip32(m, g, m.vertex(g, i), m.vertex(g, (i + 1) % 3)) == FlipResult::kNotConvex);
+            ++refused32;
+        }
+    }
+    CHECK(refused23 > 0);
+    MESSAGE("hull 3-2 candidates refused: " << refused32);
+    CHECK((Snapshot(m) == before));
+}
+
+TEST_CASE("replace_tets inserts and removes a vertex (1-4, 4-1, and outside the hull)") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(80, 15));
+    const auto tets = tet_keys(m);
+    const std::size_t n = m.vertex_count();
+    // A star of p over a region: every tetrahedron of the region with one
+    // vertex replaced by p, per face of the region's boundary (a 1-k flip).
+    auto star = [&](TetId t, VertexId p) {
+        std::vector<Tet> fresh;
+        for (int i = 0; i < 4; ++i) {
+            Tet v = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+            v[static_cast<std::size_t>(i)] = p;
+            fresh.push_back(v);
+        }
+        return fresh;
+    };
+
+    SUBCASE("inside a tetrahedron, then back") {
+        TetId t = 0;
+        while (m.is_free(t) || m.is_ghost(t)) ++t;
+        double c[3] = {0, 0, 0};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) c[k] += m.point(m.vertex(t, i))[k] / 4;
+        const VertexId p = m.add_points(c, 1);
+        const Tet original = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+        std::vector<TetId> created;
+        REQUIRE(replace_tets(m, {t}, star(t, p), &created) == ReplaceResult::kDone);
+        require_valid(m);
+        // Steiner suppression in its simplest form: 4-1.
+        REQUIRE(replace_tets(m, created, {original}) == ReplaceResult::kDone);
+        m.truncate_vertices(n);
+        require_valid(m);
+        CHECK(tet_keys(m) == tets);
+    }
+    SUBCASE("beyond one hull face") {
+        TetId g = 0;
+        while (m.is_free(g) || !m.is_ghost(g)) ++g;
+        double a[3], b[3], c[3];  // copies: adding points moves the coordinates
+        for (int k = 0; k < 3; ++k) {
+            a[k] = m.point(m.vertex(g, 0))[k];
+            b[k] = m.point(m.vertex(g, 1))[k];
+            c[k] = m.point(m.vertex(g, 2))[k];
+        }
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double normal[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        auto beyond = [&](double distance) {  // centroid + distance * outward normal
+            double p[3];
+            for (int k = 0; k < 3; ++k) p[k] = (a[k] + b[k] + c[k]) / 3 + distance * normal[k];
+            return m.add_points(p, 1);
+        };
+        const VertexId far = beyond(100.0);
+        const Snapshot before(m);
+        // Seen from far away the neighbouring hull faces are visible too:
+        // the hull would fold. (The region's own vertices are all below the
+        // new hull faces: only the neighbours' far vertices show it.)
+        CHECK(replace_tets(m, {g}, star(g, far)) == ReplaceResult::kNotConvex);
+        CHECK((Snapshot(m) == before));
+        m.truncate_vertices(n);
+        const VertexId near = beyond(1e-3);
+        REQUIRE(replace_tets(m, {g}, star(g, near)) == ReplaceResult::kDone);
+        require_valid(m);
+    }
+}
+
+// --- edge removal on hand-built shells -------------------------------------
+
+namespace {
+
+// Edge uv (u = 0 at z = -1, v = 1 at z = +1) and a ring of n points
+// 2..n+1 counter-clockwise around the z axis at radius radius(i), height
+// height(i): the shell of n tetrahedra (u, v, r_i, r_i+1).
+TetMesh shell_mesh(int n, const std::function<double(int)>& radius, const std::function<double(int)>& height) {
+    const double pi = 3.14159265358979323846;
+    std::vector<double> xyz = {0, 0, -1, 0, 0, 1};
+    std::vector<Tet> tets;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * pi * i / n + 0.1;
+        xyz.insert(xyz.end(), {radius(i) * std::cos(a), radius(i) * std::sin(a), height(i)});
+        tets.push_back({0, 1, static_cast<VertexId>(2 + i), static_cast<VertexId>(2 + (i + 1) % n)});
+    }
+    TetMesh m = build_mesh(xyz, tets);
+    REQUIRE(check_mesh(m).ok());
+    return m;
+}
+
+// All triangulations of the n-gon 0..n-1 (Catalan(n-2) of them).
+std::vector<std::vector<RingTriangle>> all_triangulations(int n) {
+    // Polygon pieces still to triangulate, depth first.
+    std::vector<std::vector<RingTriangle>> out;
+    std::function<void(std::vector<std::pair<int, int>>, std::vector<RingTriangle>)> rec =
+        [&](std::vector<std::pair<int, int>> todo, std::vector<RingTriangle> tris) {
+            while (!todo.empty() && todo.back().second - todo.back().first < 2) todo.pop_back();
+            if (todo.empty()) {
+                out.push_back(tris);
+                return;
+            }
+            const auto [i, j] = todo.back();
+            todo.pop_back();
+            for (int k = i + 1; k < j; ++k) {
+                auto next = todo;
+                next.push_back({i, k});
+                next.push_back({k, j});
+                auto t = tris;
+                t.push_back({i, k, j});
+                rec(next, t);
+            }
+        };
+    rec({{0, n - 1}}, {});
+    return out;
+}
+
+double min_quality(const TetMesh& m, const std::vector<TetId>& tets) {
+    double q = std::numeric_limits<double>::infinity();
+    for (TetId t : tets)
+        q = std::min(q, tet_quality(m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)), m.point(m.vertex(t, 2)),
+                                    m.point(m.vertex(t, 3))));
+    return q;
+}
+
+struct Outcome {
+    int valid = 0, total = 0;
+    double best = -std::numeric_limits<double>::infinity();  // best worst quality over valid ones
+};
+
+// Every triangulation of the ring through transform_shell, on copies.
+Outcome brute_force(const TetMesh& m, int n) {
+    Outcome o;
+    Shell s;
+    REQUIRE(shell(m, 0, 1, 0, s));
+    for (const auto& tris : all_triangulations(n)) {
+        TetMesh copy = m;
+        std::vector<TetId> created;
+        ++o.total;
+        const FlipResult r = transform_shell(copy, 0, 1, s, tris, &created);
+        if (r != FlipResult::kDone) {
+            CHECK(r == FlipResult::kInverted);
+            continue;
+        }
+        ++o.valid;
+        REQUIRE(check_mesh(copy).ok());
+        o.best = std::max(o.best, min_quality(copy, created));
+    }
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("edge removal on hand-built shells of 3 to 8 tetrahedra") {
+    // (Subcases hold the loops: doctest enters a subcase once per run.)
+    SUBCASE("convex planar ring: every triangulation valid, the best one chosen") {
+        const int catalan[] = {1, 1, 2, 5, 14, 42, 132};
+        for (int n = 3; n <= 8; ++n) {
+            CAPTURE(n);
+            TetMesh m = shell_mesh(n, [](int) { return 1.0; }, [](int) { return 0.0; });
+            const Outcome o = brute_force(m, n);
+            CHECK(o.total == catalan[n - 2]);
+            CHECK(o.valid == o.total);
+            std::vector<TetId> created;
+            REQUIRE(remove_edge(m, 0, 0, 1, {}, &created) == FlipResult::kDone);
+            CHECK(created.size() == static_cast<std::size_t>(2 * (n - 2)));
+            CHECK(min_quality(m, created) == o.best);
+            CHECK_FALSE(has_edge(m, 0, 1));
+            REQUIRE(check_mesh(m).ok());
+        }
+    }
+    SUBCASE("ring lifted above v: no triangulation valid") {
+        for (int n = 3; n <= 8; ++n) {
+            CAPTURE(n);
+            TetMesh m = shell_mesh(n, [](int) { return 1.0; }, [](int) { return 3.0; });
+            CHECK(brute_force(m, n).valid == 0);
+            const Snapshot before(m);
+            CHECK(remove_edge(m, 0, 0, 1) == FlipResult::kNoValidTriangulation);
+            if (n == 3) CHECK(flip32(m, 0, 0, 1) == FlipResult::kInverted);
+            CHECK((Snapshot(m) == before));
+        }
+    }
+    SUBCASE("protected edge") {
+        const EdgeProtect protect = [](VertexId a, VertexId b) { return std::min(a, b) == 0 && std::max(a, b) == 1; };
+        for (int n = 3; n <= 8; ++n) {
+            TetMesh m = shell_mesh(n, [](int) { return 1.0; }, [](int) { return 0.0; });
+            const Snapshot before(m);
+            CHECK(remove_edge(m, 0, 0, 1, protect) == FlipResult::kProtectedEdge);
+            CHECK(remove_edge(m, 0, 1, 0, protect) == FlipResult::kProtectedEdge);
+            if (n == 3) CHECK(flip32(m, 0, 0, 1, protect) == FlipResult::kProtectedEdge);
+            CHECK((Snapshot(m) == before));
+        }
+    }
+    SUBCASE("non-convex star rings: only some triangulations valid") {
+        for (int n : {6, 8}) {
+            CAPTURE(n);
+            TetMesh m = shell_mesh(n, [](int i) { return i % 2 ? 0.35 : 1.0; }, [](int) { return 0.0; });
+            const Outcome o = brute_force(m, n);
+            MESSAGE("n = " << n << ": " << o.valid << " of " << o.total << " triangulations valid");
+            CHECK(o.valid > 0);
+            CHECK(o.valid < o.total);
+            std::vector<TetId> created;
+            REQUIRE(remove_edge(m, 0, 0, 1, {}, &created) == FlipResult::kDone);
+            CHECK(min_quality(m, created) == o.best);
+            REQUIRE(check_mesh(m).ok());
+        }
+    }
+    SUBCASE("non-planar rings: edge removal finds the best valid triangulation, or reports none") {
+        // Ring heights random in [-0.9, 0.9] (u, v at -1, +1): depending on
+        // them every, some or no triangulation of the ring is valid.
+        int none = 0, some = 0, all = 0;
+        for (int n = 4; n <= 8; ++n) {
+            for (std::uint64_t seed = 0; seed < 12; ++seed) {
+                CAPTURE(n);
+                CAPTURE(seed);
+                const auto h = cbr::test::random_points(3, seed, -0.9, 0.9);
+                auto height = [&](int i) { return h[static_cast<std::size_t>(i)]; };
+                TetMesh m = shell_mesh(n, [](int) { return 1.0; }, height);
+                const Outcome o = brute_force(m, n);
+                none += o.valid == 0;
+                some += o.valid > 0 && o.valid < o.total;
+                all += o.valid == o.total;
+                std::vector<TetId> created;
+                const Snapshot before(m);
+                const FlipResult r = remove_edge(m, 0, 0, 1, {}, &created);
+                if (o.valid == 0) {
+                    CHECK(r == FlipResult::kNoValidTriangulation);
+                    CHECK((Snapshot(m) == before));
+                } else {
+                    REQUIRE(r == FlipResult::kDone);
+                    CHECK(min_quality(m, created) == o.best);
+                    REQUIRE(check_mesh(m).ok());
+                }
+            }
+        }
+        MESSAGE("non-planar rings: " << none << " with no valid triangulation, " << some << " with some, " << all
+                                     << " with all");
+        CHECK(none > 0);
+        CHECK(some > 0);
+        CHECK(all > 0);
+    }
+    SUBCASE("flip44: octahedron (u, v, r0, r2 coplanar), and a quadrilateral with no such pair") {
+        TetMesh oct = build_mesh({0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0},
+                                 {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}});
+        std::vector<TetId> created;
+        REQUIRE(flip44(oct, 0, 0, 1, {}, &created) == FlipResult::kDone);
+        CHECK(created.size() == 4);
+        CHECK_FALSE(has_edge(oct, 0, 1));
+        CHECK(has_edge(oct, 2, 4));
+        REQUIRE(check_mesh(oct).ok());
+        TetMesh skew = build_mesh({0, 0, -1, 0, 0, 1, 1, 0.1, 0, 0, 1, 0, -1, 0.3, 0, 0.2, -1, 0},
+                                  {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}});
+        CHECK(flip44(skew, 0, 0, 1) == FlipResult::kNotApplicable);
+        CHECK(remove_edge(skew, 0, 0, 1) == FlipResult::kDone);
+        CHECK(flip32(oct, 0, 2, 4) == FlipResult::kNotApplicable);  // the new edge's shell has four
+    }
+}
+
+// --- Schönhardt -------------------------------------------------------------
+
+namespace {
+
+// Schönhardt's twisted prism: bottom triangle 0-2 at z = 0, top 3-5 at
+// z = 1 turned by 30 degrees.
+std::vector<double> twisted_prism() {
+    const double pi = 3.14159265358979323846;
+    std::vector<double> xyz;
+    for (int level = 0; level < 2; ++level)
+        for (int i = 0; i < 3; ++i) {
+            const double a = 2 * pi * i / 3 + (level ? pi / 6 : 0);
+            xyz.insert(xyz.end(), {std::cos(a), std::sin(a), double(level)});
+        }
+    return xyz;
+}
+
+// Every triangulation reachable from m by the flips of this module.
+std::vector<TetMesh> reachable(const TetMesh& start, const EdgeProtect& protect) {
+    std::vector<TetMesh> states = {start};
+    std::set<std::set<Tet>> seen = {tet_keys(start)};
+    for (std::size_t next = 0; next < states.size(); ++next) {
+        const TetMesh m = states[next];
+        for (TetId t = 0; t < m.slot_count(); ++t) {
+            if (m.is_free(t)) continue;
+            std::vector<std::function<FlipResult(TetMesh&)>> flips;
+            for (int f = 0; f < 4; ++f) flips.push_back([=](TetMesh& c) { return flip23(c, t, f, protect); });
+            for (int i = 0; i < 4; ++i)
+                for (int j = i + 1; j < 4; ++j) {
+                    const VertexId u = m.vertex(t, i), v = m.vertex(t, j);
+                    flips.push_back([=](TetMesh& c) { return flip32(c, t, u, v, protect); });
+                    flips.push_back([=](TetMesh& c) { return flip44(c, t, u, v, protect); });
+                    flips.push_back([=](TetMesh& c) { return remove_edge(c, t, u, v, protect); });
+                }
+            for (const auto& flip : flips) {
+                TetMesh copy = m;
+                if (flip(copy) != FlipResult::kDone) continue;
+                require_valid(copy);
+                if (seen.insert(tet_keys(copy)).second) states.push_back(copy);
+            }
+        }
+    }
+    return states;
+}
+
+}  // namespace
+
+TEST_CASE("Schonhardt's twisted prism: no flip sequence recovers its three reflex diagonals") {
+    // The convex hull of the six points has 12 edges; the three other pairs
+    // are the diagonals i - (3 + (i+1) mod 3) of the lateral quadrilaterals
+    // that Schönhardt's polyhedron uses. Every triangulation of the six
+    // points has 3 + (interior edges) tetrahedra, its interior edges among
+    // these three diagonals: at least one is present. Having all three
+    // would triangulate the Schönhardt polyhedron (plus three outer
+    // tetrahedra), which is impossible: a Steiner point is needed.
+    const TetMesh m = delaunay_mesh(twisted_prism());
+    // The pairs that no hull face (ghost) holds.
+    std::vector<std::pair<VertexId, VertexId>> diagonals;
+    for (VertexId a = 0; a < 6; ++a)
+        for (VertexId b = a + 1; b < 6; ++b) {
+            bool hull = false;
+            for (TetId g = 0; g < m.slot_count(); ++g)
+                hull |= !m.is_free(g) && m.is_ghost(g) && vertex_index(m, g, a) >= 0 && vertex_index(m, g, b) >= 0;
+            if (!hull) diagonals.push_back({a, b});
+        }
+    REQUIRE(diagonals.size() == 3);
+    for (const auto& [a, b] : diagonals) MESSAGE("reflex diagonal " << a << "-" << b);
+    auto present = [&](const TetMesh& s) {
+        int count = 0;
+        for (const auto& [a, b] : diagonals) count += has_edge(s, a, b);
+        return count;
+    };
+
+    SUBCASE("free flips: every reachable triangulation misses a diagonal") {
+        const auto states = reachable(m, {});
+        int with[4] = {0, 0, 0, 0};
+        for (const TetMesh& s : states) ++with[present(s)];
+        MESSAGE(states.size() << " triangulations reachable from the Delaunay one (" << present(m)
+                              << " diagonals): " << with[1] << " with one diagonal, " << with[2] << " with two");
+        CHECK(states.size() > 1);
+        CHECK(with[0] == 0);  // Euler: at least one interior edge
+        CHECK(with[3] == 0);  // Schönhardt: never all three
+    }
+    SUBCASE("diagonals already present protected: the missing one never appears") {
+        const int start = present(m);
+        REQUIRE(start < 3);
+        const EdgeProtect protect = [&](VertexId a, VertexId b) {
+            for (const auto& [p, q] : diagonals)
+                if (((a == p && b == q) || (a == q && b == p)) && has_edge(m, p, q)) return true;
+            return false;
+        };
+        for (const TetMesh& s : reachable(m, protect)) {
+            for (const auto& [a, b] : diagonals)
+                if (has_edge(m, a, b)) CHECK(has_edge(s, a, b));
+            CHECK(present(s) < 3);
+        }
+    }
+}
+
+// --- ball and shell -----------------------------------------------------------
+
+TEST_CASE("ball, shell and incident_tets agree with brute-force scans") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(200, 23));
+    random_flips(m, 1500, 29);  // not Delaunay any more: the walks do not rely on it
+    Rng rng(31);
+    const std::vector<TetId> inc = incident_tets(m);
+    REQUIRE(inc.size() == m.vertex_count());
+    for (VertexId v = 0; v < m.vertex_count(); ++v) {
+        REQUIRE(inc[v] != kNoTet);
+        REQUIRE(vertex_index(m, inc[v], v) >= 0);
+        CHECK_FALSE(m.is_ghost(inc[v]));  // every vertex has a finite tetrahedron
+        std::vector<TetId> b;
+        REQUIRE(ball(m, v, inc[v], b));
+        std::set<TetId> expected;
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            if (!m.is_free(t) && vertex_index(m, t, v) >= 0) expected.insert(t);
+        CHECK(std::set<TetId>(b.begin(), b.end()) == expected);
+        CHECK(b.size() == expected.size());
+    }
+    std::vector<TetId> ghosts;
+    TetId g = 0;
+    while (m.is_free(g) || !m.is_ghost(g)) ++g;
+    REQUIRE(ball(m, kGhostVertex, g, ghosts));
+    std::size_t ghost_count = 0;
+    for (TetId t = 0; t < m.slot_count(); ++t) ghost_count += !m.is_free(t) && m.is_ghost(t);
+    CHECK(ghosts.size() == ghost_count);
+    VertexId stranger = 0;
+    while (vertex_index(m, g, stranger) >= 0) ++stranger;
+    std::vector<TetId> none = {g};
+    CHECK_FALSE(ball(m, stranger, g, none));  // g does not contain it
+    CHECK(none.empty());
+
+    for (int trial = 0; trial < 2000; ++trial) {
+        const TetId t = random_live(m, rng);
+        const int i = static_cast<int>(rng() % 4), j = (i + 1 + static_cast<int>(rng() % 3)) % 4;
+        const VertexId u = m.vertex(t, i), v = m.vertex(t, j);
+        Shell s;
+        REQUIRE(shell(m, u, v, t, s));
+        CHECK(s.tets[0] == t);
+        std::set<TetId> expected;
+        for (TetId x = 0; x < m.slot_count(); ++x)
+            if (!m.is_free(x) && vertex_index(m, x, u) >= 0 && vertex_index(m, x, v) >= 0) expected.insert(x);
+        REQUIRE(std::set<TetId>(s.tets.begin(), s.tets.end()) == expected);
+        REQUIRE(s.tets.size() == expected.size());
+        const std::size_t n = s.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const TetId x = s.tets[k];
+            const VertexId a = s.ring[k], b = s.ring[(k + 1) % n];
+            REQUIRE(vertex_index(m, x, a) >= 0);
+            REQUIRE(vertex_index(m, x, b) >= 0);
+            // (u, v, a, b) positively oriented: for a ghost, the same
+            // permutation parity as its stored order.
+            const Tet order = {u, v, a, b};
+            if (std::find(order.begin(), order.end(), kGhostVertex) == order.end()) {
+                CHECK(cbr::geom::orient3d(m.point(u), m.point(v), m.point(a), m.point(b)) > 0);
+            } else {
+                int p[4], inversions = 0;
+                for (int q = 0; q < 4; ++q) p[q] = vertex_index(m, x, order[static_cast<std::size_t>(q)]);
+                for (int q = 0; q < 4; ++q)
+                    for (int r = q + 1; r < 4; ++r) inversions += p[q] > p[r];
+                CHECK(inversions % 2 == 0);
+            }
+        }
+        const TetId e = find_edge_tet(m, u, t, v);
+        CHECK(expected.count(e) == 1);
+    }
+}
