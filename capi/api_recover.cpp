@@ -49,20 +49,23 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         require(!mesh->recovery.done, CBR_ERR_INVALID_ARGUMENT, "the faces of this mesh were recovered already");
         require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
         require(count == 0 || tris != nullptr, CBR_ERR_INVALID_ARGUMENT, "tris is NULL");
-        require(mesh->delaunay.finite_tet_count() > 0, CBR_ERR_INVALID_ARGUMENT,
-                "no tetrahedron to recover faces in: insert at least 4 non-coplanar points first");
         // The same exact checks as cbr_mesh_check_faces, before any change.
         if (cbr_mesh_check_faces(mesh, count, tris) != CBR_OK) {
             const std::string detail = mesh->last_error.substr(mesh->last_error.find(": ") + 2);
             throw ApiError{CBR_ERR_INVALID_INPUT, "invalid surface: " + detail};
         }
+        require(mesh->delaunay.finite_tet_count() > 0, CBR_ERR_INVALID_INPUT,
+                "there is no volume to recover faces in: the points are all coplanar (or fewer than 4)");
         const auto start = std::chrono::steady_clock::now();
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
         const auto result =
             cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats);
         if (!result.ok) {
-            mesh->delaunay.rebuild();  // the handle stays as it was
+            mesh->delaunay.rebuild();  // the mesh stays as it was
+            // The statistics of the attempt stay readable (Table I rows).
+            mesh->recovery.stats = state.stats;
+            mesh->recovery.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!result.invalid.empty())
                 throw ApiError{CBR_ERR_INTERNAL, "recovery left an invalid mesh: " + result.invalid.front()};
             throw ApiError{CBR_ERR_RECOVERY_FAILED,

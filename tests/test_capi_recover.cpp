@@ -135,9 +135,12 @@ TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any c
     CHECK(cbr_mesh_recover_faces(nullptr, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);
     const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0};
     const std::vector<std::int64_t> tri = {0, 1, 2};
-    CHECK(cbr_mesh_recover_faces(h.m, 1, tri.data(), nullptr) == CBR_ERR_INVALID_ARGUMENT);
-    CHECK(contains(h.error(), "insert at least 4 non-coplanar points"));
-    REQUIRE(cbr_mesh_insert_points(h.m, 5, xyz.data()) == CBR_OK);
+    CHECK(cbr_mesh_recover_faces(h.m, 1, tri.data(), nullptr) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "invalid surface"));  // the surface is checked first: ids out of range
+    REQUIRE(cbr_mesh_insert_points(h.m, 3, xyz.data()) == CBR_OK);
+    CHECK(cbr_mesh_recover_faces(h.m, 1, tri.data(), nullptr) == CBR_ERR_INVALID_INPUT);
+    CHECK(contains(h.error(), "no volume"));
+    REQUIRE(cbr_mesh_insert_points(h.m, 2, xyz.data() + 9) == CBR_OK);
     const auto before = tets_of(h.m);
     CHECK(cbr_mesh_recover_faces(h.m, -1, tri.data(), nullptr) == CBR_ERR_INVALID_ARGUMENT);
     CHECK(cbr_mesh_recover_faces(h.m, 1, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);

@@ -152,7 +152,9 @@ TEST_CASE("missing faces are reported, never hidden: the Schonhardt prism") {
     const auto result = cbr::recover::recover_faces(d.mesh_for_update(), faces, stats);
     CHECK_FALSE(result.ok);
     CHECK(stats.missing_faces > 0);
-    CHECK(result.unrecovered.size() == stats.missing_faces);
+    // Flips recover some faces, never all: the prism needs a Steiner point.
+    CHECK(!result.unrecovered.empty());
+    CHECK(result.unrecovered.size() == stats.missing_faces - stats.recovered_by_flips);
     // Each reported triangle really is absent, each other one present.
     const std::set<std::size_t> missing(result.unrecovered.begin(), result.unrecovered.end());
     const TetMesh& m = d.mesh();

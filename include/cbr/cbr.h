@@ -224,12 +224,14 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
    (and its side), so the numbering depends on the input only.
    Errors (the mesh is then unchanged):
      CBR_ERR_INVALID_ARGUMENT  NULL mesh, NULL tris with count > 0, negative
-                               count, called twice, or fewer than 4
-                               non-coplanar points;
-     CBR_ERR_INVALID_INPUT     an invalid surface (see cbr_mesh_check_faces:
-                               the message names the triangles);
+                               count, or called twice;
+     CBR_ERR_INVALID_INPUT     an invalid surface (see cbr_mesh_check_faces,
+                               which runs first and whose report stays: the
+                               message names the triangles), or no volume
+                               (all points coplanar, or fewer than 4);
      CBR_ERR_RECOVERY_FAILED   some triangles could not be recovered; the
-                               message names them.
+                               message names them (the statistics of the
+                               attempt remain readable).
    Open surfaces and non-manifold edges are legal. */
 CBR_API int cbr_mesh_recover_faces(cbr_mesh *mesh, int64_t count, const int64_t *tris, const int32_t *labels);
 

@@ -1,6 +1,7 @@
 #include "recover/recovery.hpp"
 
 #include "mesh/mesh_check.hpp"
+#include "recover/flip_recovery.hpp"
 
 namespace cbr::recover {
 
@@ -10,8 +11,13 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     stats = RecoveryStats{};
     stats.missing_faces = missing.size();
 
-    // Flips (§5.1) and conforming recovery with point splitting (§5.2-5.4)
-    // reduce `missing` here.
+    // §5.1: flips first.
+    const std::vector<std::size_t> after_flips = recover_by_flips(m, faces, missing);
+    stats.recovered_by_flips = missing.size() - after_flips.size();
+    missing = after_flips;
+
+    // Conforming recovery with point splitting (§5.2-5.4) reduces `missing`
+    // here.
 
     result.unrecovered = std::move(missing);
     // Whatever the steps did, the mesh must be valid before it is reported

@@ -1,0 +1,248 @@
+#include "recover/flip_recovery.hpp"
+
+#include <unordered_set>
+
+#include "geom/intersect.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "mesh/flips.hpp"
+
+namespace cbr::recover {
+namespace {
+
+using mesh::FlipResult;
+using mesh::kFaceVertices;
+using mesh::kGhostVertex;
+using mesh::kNoTet;
+using mesh::TetId;
+using mesh::VertexId;
+
+// Flips tried on one edge or one face before giving up: each flip removes
+// one crossing, but a flip can also create one, so a bound keeps a cycle
+// from running forever.
+constexpr int kMaxFlipsPerConstraint = 64;
+// Nesting of edge removals that first shrink the shell of an edge (n-to-m
+// flips): 2 levels recover the flat, cospherical configurations of CAD
+// boxes (hull faces) at a bounded cost of about (2n)^2 attempts.
+constexpr int kRemovalDepth = 2;
+// Edge removals attempted for one face, nesting included: hard faces
+// (those that need Steiner points) fail fast instead of exploring every
+// nested removal.
+constexpr int kRemovalBudgetPerFace = 400;
+
+std::uint64_t edge_key(VertexId a, VertexId b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+}
+
+// What the open segment u -> w meets first, leaving u.
+struct Crossing {
+    enum Kind { kNone, kFace, kEdge, kVertex } kind = kNone;
+    TetId tet = kNoTet;  // contains the face or edge
+    int face = -1;       // kFace: the face of `tet` crossed (opposite u)
+    VertexId x = 0, y = 0;  // kEdge: the edge crossed
+};
+
+class FlipRecovery {
+public:
+    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces) : m_(m), faces_(faces) {
+        incident_ = mesh::incident_tets(m_);
+        for (std::size_t i = 0; i < faces_.size(); ++i) {
+            const Triangle& t = faces_.triangle(i);
+            for (int k = 0; k < 3; ++k) input_edges_.insert(edge_key(t[k], t[(k + 1) % 3]));
+        }
+        protect_ = [this](VertexId a, VertexId b) { return input_edges_.count(edge_key(a, b)) != 0; };
+    }
+
+    bool recover(std::size_t i) {
+        budget_ = kRemovalBudgetPerFace;
+        const Triangle& t = faces_.triangle(i);
+        for (int k = 0; k < 3; ++k)
+            if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
+        return recover_face(t);
+    }
+
+private:
+    TetId edge_tet(VertexId a, VertexId b) const { return mesh::find_edge_tet(m_, a, incident_[a], b); }
+
+    void note_created() {
+        for (TetId t : created_)
+            for (int i = 0; i < 4; ++i)
+                if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
+    }
+
+    bool done(FlipResult r) {
+        if (r != FlipResult::kDone) return false;
+        note_created();
+        return true;
+    }
+
+    // The tetrahedron of u's ball whose cone at u holds w, and what the
+    // segment crosses there: the opposite face, one of its edges, or a
+    // vertex (when the segment runs through it).
+    Crossing first_crossing(VertexId u, VertexId w) {
+        Crossing c;
+        if (!mesh::ball(m_, u, incident_[u], ball_)) return c;
+        const double* pw = m_.point(w);
+        for (TetId t : ball_) {
+            if (m_.is_ghost(t)) continue;
+            const int ui = mesh::vertex_index(m_, t, u);
+            int zeros = 0, zero_face[2] = {-1, -1};
+            bool inside = true;
+            for (int g = 0; g < 4 && inside; ++g) {
+                if (g == ui) continue;
+                const VertexId* v = m_.vertices(t);
+                const int s = geom::orient3d(m_.point(v[kFaceVertices[g][0]]), m_.point(v[kFaceVertices[g][1]]),
+                                             m_.point(v[kFaceVertices[g][2]]), pw);
+                if (s < 0) inside = false;
+                if (s == 0 && zeros < 2) zero_face[zeros++] = g;
+            }
+            if (!inside) continue;
+            c.tet = t;
+            if (zeros == 0) {
+                c.kind = Crossing::kFace;
+                c.face = ui;
+            } else if (zeros == 1) {
+                // Along face zero_face[0]: through its edge opposite u.
+                c.kind = Crossing::kEdge;
+                int n = 0;
+                for (int h = 0; h < 4; ++h)
+                    if (h != ui && h != zero_face[0]) (n++ == 0 ? c.x : c.y) = m_.vertex(t, h);
+            } else {
+                c.kind = Crossing::kVertex;
+            }
+            return c;
+        }
+        return c;
+    }
+
+    bool remove_crossing(const Crossing& c) {
+        created_.clear();
+        switch (c.kind) {
+            case Crossing::kFace: {
+                if (done(mesh::flip23(m_, c.tet, c.face, protect_, &created_))) return true;
+                // The face cannot be flipped: remove one of its edges.
+                const VertexId* v = m_.vertices(c.tet);
+                VertexId edge[3][2];
+                for (int k = 0; k < 3; ++k) {
+                    edge[k][0] = v[kFaceVertices[c.face][k]];
+                    edge[k][1] = v[kFaceVertices[c.face][(k + 1) % 3]];
+                }
+                const TetId t = c.tet;
+                for (const auto& e : edge)
+                    if (remove_edge_deep(t, e[0], e[1], kRemovalDepth)) return true;
+                return false;
+            }
+            case Crossing::kEdge: return remove_edge_deep(c.tet, c.x, c.y, kRemovalDepth);
+            default: return false;  // through a vertex: no flip helps
+        }
+    }
+
+    bool recover_edge(VertexId u, VertexId w) {
+        for (int step = 0; step < kMaxFlipsPerConstraint; ++step) {
+            if (edge_tet(u, w) != kNoTet) return true;
+            if (!remove_crossing(first_crossing(u, w)) && !remove_crossing(first_crossing(w, u))) return false;
+        }
+        return edge_tet(u, w) != kNoTet;
+    }
+
+    // Face abc, its edges present: present already, or remove a mesh edge
+    // crossing its interior, found in the shell of one of its edges.
+    bool recover_face(const Triangle& tri) {
+        for (int step = 0; step < kMaxFlipsPerConstraint; ++step) {
+            if (mark_if_present(tri)) return true;
+            if (!remove_edge_crossing(tri)) return false;
+        }
+        return mark_if_present(tri);
+    }
+
+    bool mark_if_present(const Triangle& tri) {
+        const TetId t = edge_tet(tri[0], tri[1]);
+        if (t == kNoTet || !mesh::shell(m_, tri[0], tri[1], t, shell_)) return false;
+        for (std::size_t i = 0; i < shell_.size(); ++i) {
+            if (shell_.ring[i] != tri[2]) continue;
+            // The face (a, b, c) lies between shell tetrahedra i-1 and i.
+            const TetId s = shell_.tets[i];
+            const int f = mesh::vertex_index(m_, s, shell_.ring[(i + 1) % shell_.size()]);
+            const mesh::FacetRef across = m_.neighbor(s, f);
+            m_.set_constrained(s, f, true);
+            m_.set_constrained(mesh::facet_tet(across), mesh::facet_face(across), true);
+            return true;
+        }
+        return false;
+    }
+
+    bool remove_edge_crossing(const Triangle& tri) {
+        const double* a = m_.point(tri[0]);
+        const double* b = m_.point(tri[1]);
+        const double* c = m_.point(tri[2]);
+        for (int k = 0; k < 3; ++k) {
+            const VertexId p = tri[k], q = tri[(k + 1) % 3];
+            const TetId t = edge_tet(p, q);
+            if (t == kNoTet || !mesh::shell(m_, p, q, t, shell_)) continue;
+            const mesh::Shell around = shell_;
+            for (std::size_t i = 0; i < around.size(); ++i) {
+                const VertexId r = around.ring[i], s = around.ring[(i + 1) % around.size()];
+                if (r == kGhostVertex || s == kGhostVertex) continue;
+                if (!geom::segment_crosses_triangle_interior(m_.point(r), m_.point(s), a, b, c)) continue;
+                if (remove_edge_deep(around.tets[i], r, s, kRemovalDepth)) return true;
+            }
+        }
+        return false;
+    }
+
+    // Edge removal of uv (t contains it); when no triangulation of its ring
+    // is valid, first remove an edge from u or v to a ring vertex (that
+    // vertex then leaves the ring), up to `depth` levels, and try again.
+    bool remove_edge_deep(TetId t, VertexId u, VertexId v, int depth) {
+        if (protect_(u, v) || u == kGhostVertex || v == kGhostVertex || budget_ <= 0) return false;
+        --budget_;
+        created_.clear();
+        if (done(mesh::remove_edge(m_, t, u, v, protect_, &created_))) return true;
+        if (depth == 0) return false;
+        mesh::Shell around;
+        if (!mesh::shell(m_, u, v, t, around)) return false;
+        for (std::size_t i = 0; i < around.size(); ++i) {
+            const VertexId r = around.ring[i];
+            if (r == kGhostVertex) continue;
+            for (VertexId end : {u, v}) {
+                if (!remove_edge_deep(around.tets[i], end, r, depth - 1)) continue;
+                const TetId again = edge_tet(u, v);
+                if (again == kNoTet) return true;  // uv went with it
+                return remove_edge_deep(again, u, v, depth - 1);
+            }
+        }
+        return false;
+    }
+
+    mesh::TetMesh& m_;
+    const ConstraintFaces& faces_;
+    int budget_ = 0;
+    std::vector<TetId> incident_;
+    std::unordered_set<std::uint64_t> input_edges_;
+    mesh::EdgeProtect protect_;
+    std::vector<TetId> ball_, created_;
+    mesh::Shell shell_;
+};
+
+}  // namespace
+
+std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                          const std::vector<std::size_t>& missing) {
+    FlipRecovery flips(m, faces);
+    std::vector<std::size_t> left = missing;
+    // A face recovered later can unblock one tried earlier: repeat while a
+    // pass makes progress.
+    for (bool progress = true; progress && !left.empty();) {
+        progress = false;
+        std::vector<std::size_t> still;
+        for (std::size_t i : left) {
+            if (flips.recover(i)) progress = true;
+            else still.push_back(i);
+        }
+        left.swap(still);
+    }
+    return left;
+}
+
+}  // namespace cbr::recover

@@ -1,0 +1,24 @@
+// §5.1 first step of the combined recovery: recover missing faces by flips
+// alone. For each missing face, its missing edges first (remove, by a 2-3
+// flip or an edge removal, the first face or edge that the segment
+// crosses, walking from either end), then the face (remove the mesh edges
+// that cross its interior). Input edges are never flipped away and
+// replace_tets never removes a recovered face, so a recovered constraint
+// stays recovered ("protection").
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/constraint_faces.hpp"
+
+namespace cbr::recover {
+
+// Tries to recover the faces `missing` (indices into `faces`); marks the
+// recovered ones as constraint faces; returns those still missing, in
+// increasing order.
+std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                          const std::vector<std::size_t>& missing);
+
+}  // namespace cbr::recover
