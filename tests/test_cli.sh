@@ -143,6 +143,29 @@ run_local() {
         report_has "edge 0-1 \(first triangle 0\)" && report_has "2 closed shells: 2 with outward normals"
     off tips "$tet_points;-1 0 0;0 -1 0;0 0 -1" "$tet_faces;0 4 5;0 6 4;0 5 6;4 6 5"
     expect 0 "" check "$tmp/tips.off" && report_has "non-manifold vertices +1" && report_has "point 0 \(its triangles"
+
+    # cbr recover: the volume mesh written, Table I printed; every failure
+    # one line on stderr, its exit code, and no output file left behind.
+    expect 0 "" recover --help && report_has "cbr recover IN -o OUT"
+    expect 1 "no output file" recover "$tmp/tet.off"
+    expect 4 "unknown output format" recover "$tmp/tet.off" -o "$tmp/tet.xyz"
+    expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh"
+    expect 0 "" recover "$tmp/tet.off" -o "$tmp/tet.mesh" && report_has "Table I" &&
+        report_has "faces missing after Delaunay +0" && report_has "-> .*tet.mesh: 4 points, 1 tetrahedra"
+    no_file() {
+        checks=$((checks + 1))
+        [ ! -e "$1" ] || fail "$1 was written by a failed run"
+    }
+    checks=$((checks + 1))
+    grep -q "^Tetrahedra" "$tmp/tet.mesh" || fail "tet.mesh has no Tetrahedra section"
+    expect 2 "zero area" recover "$tmp/flat.off" -o "$tmp/flat.mesh" && no_file "$tmp/flat.mesh"
+    expect 2 "is open: 3 open edges" recover "$tmp/open.off" -o "$tmp/open.mesh" && no_file "$tmp/open.mesh"
+    expect 0 "" recover --allow-open --keep-exterior "$tmp/open.off" -o "$tmp/open.mesh"
+    expect 2 "identical" recover "$tmp/duppts.off" -o "$tmp/duppts.mesh" && no_file "$tmp/duppts.mesh"
+    # Schonhardt's twisted prism: no flip recovers it; a clean failure.
+    off prism "1 0 0;-0.5 0.8660254037844386 0;-0.5 -0.8660254037844386 0;0.8660254037844387 0.5 1;-0.8660254037844387 0.5 1;0 -1 1" \
+        "0 2 1;3 4 5;0 1 4;0 4 3;1 2 5;1 5 4;2 0 3;2 3 5"
+    expect 3 "could not recover triangle" recover "$tmp/prism.off" -o "$tmp/prism.mesh" && no_file "$tmp/prism.mesh"
 }
 
 # One line per invalid file: name, exit code, what stderr must name, and a
@@ -175,6 +198,12 @@ run_shared() {
         report=$(echo "$line" | cut -d'|' -f4)
         expect "$code" "^cbr check: .*$name: not usable for boundary recovery: .*$names" check "$f" &&
             report_has "$report"
+    done
+    # cbr recover rejects every invalid file too (exit 2, no output).
+    for f in "$data"/invalid/*; do
+        expect 2 "^cbr recover: " recover "$f" -o "$tmp/invalid.mesh"
+        checks=$((checks + 1))
+        [ ! -e "$tmp/invalid.mesh" ] || fail "recover wrote a mesh for $f"
     done
     # Open surfaces are legal for recovery: accepted on request.
     expect 0 "" check --allow-open "$data/invalid/open-cube.off"

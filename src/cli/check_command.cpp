@@ -80,25 +80,13 @@ int parse_args(int argc, char** argv, CheckArgs& args) {
     return args.path.empty() ? usage_error("no input file") : kContinue;
 }
 
-int exit_code_for_read(io::ErrorKind kind) {
-    switch (kind) {
-        case io::ErrorKind::parse_error:
-        case io::ErrorKind::invalid_mesh: return kExitInput;
-        case io::ErrorKind::not_found:
-        case io::ErrorKind::unreadable:
-        case io::ErrorKind::unknown_extension:
-        case io::ErrorKind::write_error: return kExitIo;
-        default: return kExitInternal;
-    }
-}
-
 int read_input(const CheckArgs& args, io::SurfaceMesh& surface) {
     io::ReadOptions options;
     options.triangulate_polygons = args.triangulate;
     const io::Status status = io::read_surface(args.path, surface, options);
     if (status.ok()) return kContinue;
     std::fprintf(stderr, "cbr check: %s\n", status.message.c_str());
-    return exit_code_for_read(status.kind);
+    return exit_code_for(status.kind);
 }
 
 // The surface with each duplicate point merged into its first copy.

@@ -4,6 +4,8 @@
 
 #include <cbr/cbr.h>
 
+#include "io/status.hpp"
+
 namespace cbr::cli {
 
 constexpr int kExitOk = 0;        // success
@@ -20,6 +22,19 @@ inline int exit_code_for(int status) {
         case CBR_ERR_INVALID_INPUT: return kExitInput;
         case CBR_ERR_RECOVERY_FAILED: return kExitRecovery;
         case CBR_ERR_IO: return kExitIo;
+        default: return kExitInternal;
+    }
+}
+
+// Exit code for a failed read or write of a file.
+inline int exit_code_for(io::ErrorKind kind) {
+    switch (kind) {
+        case io::ErrorKind::parse_error:
+        case io::ErrorKind::invalid_mesh: return kExitInput;
+        case io::ErrorKind::not_found:
+        case io::ErrorKind::unreadable:
+        case io::ErrorKind::unknown_extension:
+        case io::ErrorKind::write_error: return kExitIo;
         default: return kExitInternal;
     }
 }

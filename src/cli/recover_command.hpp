@@ -1,0 +1,11 @@
+// `cbr recover IN -o OUT`: Delaunay tetrahedralization of a surface's
+// points, constrained boundary recovery of its triangles, the volume mesh
+// written to OUT (format by extension) and the paper's Table I printed.
+#pragma once
+
+namespace cbr::cli {
+
+// argv[0] is "recover". Returns the process exit code.
+int run_recover(int argc, char** argv);
+
+}  // namespace cbr::cli
