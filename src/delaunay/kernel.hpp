@@ -43,6 +43,7 @@ private:
     void grow_cavity(mesh::TetId start, const double* p);
     void fill_cavity(mesh::VertexId p);
     mesh::VertexId coincident_vertex(mesh::TetId t, const double* p) const;
+    bool link_star_by_table();
     mesh::FacetRef partner_across_edge(mesh::TetId t, int f, int g) const;
     int index_in(mesh::TetId t, mesh::VertexId v) const;
     std::uint32_t next_random() {
@@ -59,6 +60,13 @@ private:
     std::vector<mesh::TetId> cavity_, rejected_, stack_;
     std::vector<BoundaryFacet> boundary_;
     std::vector<mesh::TetId> new_tets_;
+    // link_star_by_table's scratch: a local number per vertex (kNoLocal
+    // between insertions: 1 byte per vertex), the locals of each boundary
+    // triangle, the directed-edge table.
+    static constexpr std::uint8_t kNoLocal = 0xFF;
+    std::vector<std::uint8_t> vertex_local_, triangle_locals_;
+    std::vector<mesh::VertexId> local_vertices_;
+    std::vector<mesh::FacetRef> edge_table_;
 };
 
 }  // namespace cbr::delaunay
