@@ -28,7 +28,7 @@ constexpr int kRemovalDepth = 2;
 // Edge removals attempted for one face, nesting included: hard faces
 // (those that need Steiner points) fail fast instead of exploring every
 // nested removal.
-constexpr int kRemovalBudgetPerFace = 400;
+constexpr int kRemovalBudgetPerFace = 100;
 
 std::uint64_t edge_key(VertexId a, VertexId b) {
     if (a > b) std::swap(a, b);
