@@ -2,8 +2,14 @@
 # The cbr command as a user meets it: exit codes, the one error line on
 # stderr, the report on stdout.
 #
-#   test_cli.sh local  <cbr> <tests/data/io>   small generated files and the
-#                                              repository's format samples
+#   test_cli.sh local  <cbr> <tests/data/io> [<cli_mesh_info>]
+#                                              small generated files and the
+#                                              repository's format samples;
+#                                              cli_mesh_info (tests/) reads
+#                                              written .mesh files back. When
+#                                              installed, gmsh (-check) and
+#                                              python3-meshio read the outputs
+#                                              too (skipped when absent)
 #   test_cli.sh shared <cbr> [<data dir>]      every file of ../shared/data:
 #                                              invalid/ rejected, surfaces/
 #                                              accepted; the data directory
@@ -13,7 +19,7 @@
 set -u
 
 if [ $# -lt 2 ]; then
-    echo "usage: $0 local <cbr> <io data dir> | shared <cbr> [<data dir>]" >&2
+    echo "usage: $0 local <cbr> <io data dir> [<cli_mesh_info>] | shared <cbr> [<data dir>]" >&2
     exit 2
 fi
 mode=$1
@@ -60,6 +66,12 @@ report_has() {
     grep -Eq -- "$1" "$tmp/out" || fail "the report does not match /$1/"
 }
 
+# no_file PATH: a failed run left no file at PATH.
+no_file() {
+    checks=$((checks + 1))
+    [ ! -e "$1" ] || fail "$1 was written by a failed run"
+}
+
 # off NAME POINTS TRIANGLES: writes $tmp/NAME.off from "x y z;..." and "a b c;..."
 off() {
     np=$(echo "$2" | tr ';' '\n' | grep -c .)
@@ -70,6 +82,178 @@ off() {
         echo "$2" | tr ';' '\n' | grep .
         echo "$3" | tr ';' '\n' | grep . | sed 's/^/3 /'
     } > "$tmp/$1.off"
+}
+
+# json_has FILE EXPR...: FILE parses as JSON (python3's json module) and
+# each Python expression EXPR, over the document d, is true.
+json_has() {
+    file=$1
+    shift
+    checks=$((checks + 1))
+    python3 - "$file" "$@" > "$tmp/json.log" 2>&1 <<'PY' || fail "$file: $(cat "$tmp/json.log")"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+for expr in sys.argv[2:]:
+    if not eval(expr):
+        sys.exit("false: " + expr)
+PY
+}
+
+# A Python with meshio (the Debian package python3-meshio installs it for
+# /usr/bin/python3, which may not be the first python3 on PATH), or "".
+find_meshio_python() {
+    for py in python3 /usr/bin/python3; do
+        if command -v "$py" > /dev/null 2>&1 && "$py" -c 'import meshio' > /dev/null 2>&1; then
+            echo "$py"
+            return
+        fi
+    done
+}
+
+# Table II, --json, demo -o, cbr mesh, the progress line, round trips.
+run_local_outputs() {
+    mesh_info=$1
+    off cube "0 0 0;1 0 0;1 1 0;0 1 0;0 0 1;1 0 1;1 1 1;0 1 1" \
+        "0 2 1;0 3 2;4 5 6;4 6 7;0 1 5;0 5 4;3 7 6;3 6 2;0 4 7;0 7 3;1 2 6;1 6 5"
+
+    # Table II on the corner tetrahedron: q = sqrt(3) - 1, dihedral angles
+    # 90 (at the axes) and acos(1/sqrt(3)) = 54.7356 degrees. Success
+    # leaves stderr empty: no progress line when stderr is not a terminal.
+    expect 0 "" recover "$tmp/tet.off" -o "$tmp/tet.vtu" --json "$tmp/tet.json" &&
+        report_has "Table II" && report_has "average quality +0\.7321$" &&
+        report_has "minimum quality +0\.7321$" && report_has "elements with q > 0\.4 +100\.00 %" &&
+        report_has "elements with q < 0\.1 +0\.00 %" && report_has "touching a Steiner point +0$" &&
+        report_has "minimum dihedral angle +54\.74 deg" && report_has "maximum dihedral angle +90\.00 deg"
+    json_has "$tmp/tet.json" 'd["status"] == "ok" and d["exit_code"] == 0 and d["error"] is None' \
+        'd["command"] == "recover" and d["input"].endswith("tet.off") and d["output"].endswith("tet.vtu")' \
+        'd["mesh"] == {"points": 4, "tetrahedra": 1}' \
+        'd["table_one"]["total_vertices"] == 4 and d["table_one"]["missing_faces"] == 0' \
+        'all(k in d["table_one"] for k in ("boundary_vertices", "recovered_by_flips", "conforming_points", "steiner_generated", "steiner_remaining", "region_count", "delaunay_seconds", "recovery_seconds", "total_seconds"))' \
+        'abs(d["table_two"]["quality_min"] - (math.sqrt(3) - 1)) < 1e-14' \
+        'd["table_two"]["quality_average"] == d["table_two"]["quality_min"]' \
+        'abs(d["table_two"]["dihedral_min_degrees"] - math.degrees(math.acos(1 / math.sqrt(3)))) < 1e-12' \
+        'abs(d["table_two"]["dihedral_max_degrees"] - 90) < 1e-12' \
+        'd["table_two"]["percent_above_0_4"] == 100 and d["table_two"]["percent_below_0_1"] == 0' \
+        'd["table_two"]["bad_touching_steiner"] == 0 and d["table_two"]["regions"] == []'
+    checks=$((checks + 1))
+    grep -q '<DataArray type="Float64" Name="quality"' "$tmp/tet.vtu" || fail "tet.vtu has no quality cell data"
+
+    # The cube: six faces' diagonals recovered by flips; sane qualities.
+    expect 0 "" recover "$tmp/cube.off" -o "$tmp/cube.mesh" --json "$tmp/cube.json" && report_has "Table II"
+    json_has "$tmp/cube.json" 'd["status"] == "ok" and d["mesh"]["points"] == 8' \
+        'd["table_two"]["tetrahedra"] == d["mesh"]["tetrahedra"] >= 5' \
+        '0.1 < d["table_two"]["quality_min"] <= d["table_two"]["quality_average"] <= 1' \
+        '0 < d["table_two"]["dihedral_min_degrees"] <= 70.53 <= d["table_two"]["dihedral_max_degrees"] < 180' \
+        'd["table_two"]["percent_below_0_1"] == 0'
+
+    # Round trips through the project's own Medit reader: the surface's
+    # points bit for bit, its triangles, the counts printed.
+    if [ -n "$mesh_info" ]; then
+        for name in tet cube; do
+            expect 0 "" recover "$tmp/$name.off" -o "$tmp/$name.mesh"
+            counts=$(sed -n 's/.*: \([0-9]*\) points, \([0-9]*\) tetrahedra$/points \1 tetrahedra \2/p' "$tmp/out")
+            checks=$((checks + 1))
+            "$mesh_info" "$tmp/$name.mesh" "$tmp/$name.off" > "$tmp/info" 2>&1 &&
+                grep -q "^$counts triangles [0-9]* regions 1 steiner 0$" "$tmp/info" &&
+                grep -q "^surface identical$" "$tmp/info" ||
+                fail "$name.mesh read back: $(cat "$tmp/info") (expected $counts)"
+        done
+    fi
+
+    # --json for failed runs too: status, exit code, error; no mesh.
+    expect 3 "could not recover triangle" recover "$tmp/prism.off" -o "$tmp/prism.mesh" --json "$tmp/prism.json" &&
+        no_file "$tmp/prism.mesh"
+    json_has "$tmp/prism.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
+        'd["output"] is None and "could not recover" in d["error"]' \
+        'd["table_one"]["missing_faces"] > 0 and d["table_two"] is None and d["mesh"] is None'
+    expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh" --json "$tmp/missing.json"
+    json_has "$tmp/missing.json" 'd["status"] == "io_error" and d["exit_code"] == 4 and d["table_one"] is None'
+    expect 4 "missing-dir/r.json: cannot create" recover "$tmp/tet.off" -o "$tmp/t2.mesh" --json "$tmp/missing-dir/r.json"
+    # A file name with a quote, a tab and a byte that is not UTF-8: still
+    # valid JSON (the byte becomes U+FFFD).
+    odd=$(printf 'we"ird\t\351.off')
+    cp "$tmp/tet.off" "$tmp/$odd"
+    expect 0 "" recover -q "$tmp/$odd" -o "$tmp/odd.mesh" --json "$tmp/odd.json"
+    json_has "$tmp/odd.json" 'd["input"].endswith("we\"ird\t\ufffd.off")'
+    # An open surface with --allow-open alone: no tetrahedron, no quality.
+    expect 0 "" recover --allow-open "$tmp/open.off" -o "$tmp/open.vtu" --json "$tmp/open.json" &&
+        report_has "average quality +-$" && report_has "minimum dihedral angle +-$"
+    json_has "$tmp/open.json" 'd["status"] == "ok" and d["mesh"]["tetrahedra"] == 0' \
+        'd["table_two"]["tetrahedra"] == 0 and d["table_two"]["quality_min"] is None' \
+        'd["table_two"]["percent_above_0_4"] is None and d["table_two"]["dihedral_max_degrees"] is None'
+    expect 1 "--json needs a file name" recover "$tmp/tet.off" -o "$tmp/t2.mesh" --json
+    expect 1 "--json and -o name the same file" recover "$tmp/tet.off" -o "$tmp/t2.mesh" --json "$tmp/t2.mesh"
+    # CBR_TIMING=1: one line with the steps and the share of reading + writing.
+    checks=$((checks + 1))
+    CBR_TIMING=1 "$cbr" recover -q "$tmp/cube.off" -o "$tmp/cube.vtu" > "$tmp/out" 2> "$tmp/err"
+    [ $? -eq 0 ] && [ ! -s "$tmp/out" ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] &&
+        grep -Eq "^cbr recover: timing: reading [0-9.]+ s, inserting points .*, writing [0-9.]+ s; total [0-9.]+ s; reading \+ writing [0-9.]+ s = [0-9.]+% of total$" "$tmp/err" ||
+        fail "CBR_TIMING=1: no timing line"
+
+    # cbr demo: the mesh written with -o, the JSON with --json, 10 regions.
+    expect 0 "" demo --help && report_has "cbr demo \[-o OUT\] \[--json FILE\]"
+    expect 0 "" demo -o "$tmp/demo.mesh" --json "$tmp/demo.json" && report_has "written: .*demo.mesh" &&
+        report_has "Table I" && report_has "Table II" && report_has "per region:" && report_has "region 10: "
+    checks=$((checks + 1))
+    [ -s "$tmp/demo.mesh" ] || fail "cbr demo -o wrote no file"
+    json_has "$tmp/demo.json" 'd["command"] == "demo" and d["status"] == "ok" and d["output"].endswith("demo.mesh")' \
+        'len(d["table_two"]["regions"]) == 10 and [r["region"] for r in d["table_two"]["regions"]] == list(range(1, 11))' \
+        'sum(r["tetrahedra"] for r in d["table_two"]["regions"]) == d["table_two"]["tetrahedra"] == d["mesh"]["tetrahedra"]' \
+        'min(r["quality_min"] for r in d["table_two"]["regions"]) == d["table_two"]["quality_min"]' \
+        'd["table_one"]["steiner_remaining"] == 0 and d["table_two"]["bad_touching_steiner"] == 0'
+    if [ -n "$mesh_info" ]; then
+        checks=$((checks + 1))
+        tets=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["mesh"]["tetrahedra"])' "$tmp/demo.json")
+        "$mesh_info" "$tmp/demo.mesh" > "$tmp/info" 2>&1 &&
+            grep -q "^points 2540 tetrahedra $tets triangles 5040 regions 10 steiner 0$" "$tmp/info" ||
+            fail "demo.mesh read back: $(cat "$tmp/info")"
+    fi
+    expect 0 "" demo -q && { checks=$((checks + 1)); [ ! -s "$tmp/out" ] || fail "cbr demo -q printed a report"; }
+    expect 4 "unknown output format" demo -o "$tmp/demo.xyz"
+    expect 1 "unknown argument 'x'" demo x
+
+    # cbr mesh: not available yet; exit 1 (documented), nothing written.
+    expect 0 "" mesh --help && report_has "NOT AVAILABLE YET" && report_has "cbr mesh IN -o OUT \[--size H\]"
+    expect 1 "^cbr mesh: full mesh generation is not available yet in libcbr [0-9]+\.[0-9]+\.[0-9]+ \(see cbr recover\)$" \
+        mesh "$tmp/cube.off" -o "$tmp/cube-mesh.mesh" --size 0.1 && no_file "$tmp/cube-mesh.mesh"
+    expect 0 "" --help && report_has "mesh IN -o OUT" && report_has "demo \[-o OUT\]"
+
+    # Real tools, when installed: gmsh opens .msh and .mesh, meshio reads
+    # .vtu, .msh and .mesh with the right counts.
+    expect 0 "" demo -q -o "$tmp/demo.msh"
+    expect 0 "" demo -q -o "$tmp/demo.vtu"
+    if command -v gmsh > /dev/null 2>&1; then
+        for f in demo.msh demo.mesh; do
+            checks=$((checks + 1))
+            gmsh -check "$tmp/$f" > "$tmp/gmsh.log" 2>&1 && ! grep -q "Error" "$tmp/gmsh.log" &&
+                grep -q "2540 nodes" "$tmp/gmsh.log" && grep -q "Done checking mesh coherence" "$tmp/gmsh.log" ||
+                fail "gmsh -check $f: $(grep -m 3 -E 'Error|Warning' "$tmp/gmsh.log")"
+        done
+    else
+        echo "SKIP: gmsh is not installed (gmsh -check)"
+    fi
+    py=$(find_meshio_python)
+    if [ -n "$py" ]; then
+        checks=$((checks + 1))
+        "$py" - "$tmp/demo.json" "$tmp/demo.vtu" "$tmp/demo.msh" "$tmp/demo.mesh" > "$tmp/meshio.log" 2>&1 <<'PY' ||
+import json, sys
+import meshio
+tets = json.load(open(sys.argv[1]))["mesh"]["tetrahedra"]
+for path in sys.argv[2:]:
+    m = meshio.read(path)
+    cells = {}
+    for block in m.cells:
+        cells[block.type] = cells.get(block.type, 0) + len(block.data)
+    want = {"tetra": tets} if path.endswith(".vtu") else {"tetra": tets, "triangle": 5040}
+    if len(m.points) != 2540 or cells != want:
+        sys.exit("%s: %d points, cells %s; expected 2540 points, cells %s" % (path, len(m.points), cells, want))
+    if path.endswith(".vtu") and min(m.cell_data["quality"][0]) <= 0:
+        sys.exit(path + ": a quality <= 0")
+PY
+            fail "meshio: $(tail -1 "$tmp/meshio.log")"
+    else
+        echo "SKIP: python3-meshio is not installed (meshio reads)"
+    fi
 }
 
 run_local() {
@@ -152,10 +336,6 @@ run_local() {
     expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh"
     expect 0 "" recover "$tmp/tet.off" -o "$tmp/tet.mesh" && report_has "Table I" &&
         report_has "faces missing after Delaunay +0" && report_has "-> .*tet.mesh: 4 points, 1 tetrahedra"
-    no_file() {
-        checks=$((checks + 1))
-        [ ! -e "$1" ] || fail "$1 was written by a failed run"
-    }
     checks=$((checks + 1))
     grep -q "^Tetrahedra" "$tmp/tet.mesh" || fail "tet.mesh has no Tetrahedra section"
     expect 2 "zero area" recover "$tmp/flat.off" -o "$tmp/flat.mesh" && no_file "$tmp/flat.mesh"
@@ -166,6 +346,8 @@ run_local() {
     off prism "1 0 0;-0.5 0.8660254037844386 0;-0.5 -0.8660254037844386 0;0.8660254037844387 0.5 1;-0.8660254037844387 0.5 1;0 -1 1" \
         "0 2 1;3 4 5;0 1 4;0 4 3;1 2 5;1 5 4;2 0 3;2 3 5"
     expect 3 "could not recover triangle" recover "$tmp/prism.off" -o "$tmp/prism.mesh" && no_file "$tmp/prism.mesh"
+
+    run_local_outputs "${2:-}"
 }
 
 # One line per invalid file: name, exit code, what stderr must name, and a
@@ -221,8 +403,8 @@ run_shared() {
 
 case $mode in
 local)
-    [ $# -eq 3 ] || { echo "usage: $0 local <cbr> <io data dir>" >&2; exit 2; }
-    run_local "$3"
+    [ $# -eq 3 ] || [ $# -eq 4 ] || { echo "usage: $0 local <cbr> <io data dir> [<cli_mesh_info>]" >&2; exit 2; }
+    run_local "$3" "${4:-}"
     ;;
 shared)
     data=${CBR_SHARED_DATA_DIR:-${3:-}}

@@ -9,7 +9,7 @@
 namespace cbr::cli {
 
 constexpr int kExitOk = 0;        // success
-constexpr int kExitUsage = 1;     // bad command line
+constexpr int kExitUsage = 1;     // bad command line, or a command not available yet (cbr mesh)
 constexpr int kExitInput = 2;     // invalid input: unparsable file, or a surface that cannot be recovered
 constexpr int kExitRecovery = 3;  // boundary recovery failed
 constexpr int kExitIo = 4;        // a file missing, unreadable, unwritable, or of unknown extension
@@ -23,6 +23,18 @@ inline int exit_code_for(int status) {
         case CBR_ERR_RECOVERY_FAILED: return kExitRecovery;
         case CBR_ERR_IO: return kExitIo;
         default: return kExitInternal;
+    }
+}
+
+// The name of an exit code in the JSON reports ("status"): stable.
+inline const char* exit_status_name(int code) {
+    switch (code) {
+        case kExitOk: return "ok";
+        case kExitUsage: return "usage";
+        case kExitInput: return "invalid_input";
+        case kExitRecovery: return "recovery_failed";
+        case kExitIo: return "io_error";
+        default: return "internal_error";
     }
 }
 

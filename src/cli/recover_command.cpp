@@ -3,11 +3,16 @@
 #include <cbr/cbr.h>
 
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <string>
-#include <vector>
 
 #include "cli/exit_codes.hpp"
+#include "cli/recovery_run.hpp"
+#include "cli/run_report.hpp"
+#include "cli/steps.hpp"
 #include "cli/table_one.hpp"
+#include "cli/table_two.hpp"
 #include "io/read_surface.hpp"
 #include "io/write_volume.hpp"
 
@@ -17,7 +22,7 @@ namespace {
 constexpr int kContinue = -1;
 
 struct RecoverArgs {
-    std::string input, output;
+    std::string input, output, json;
     bool keep_exterior = false;
     bool allow_open = false;
     bool quiet = false;
@@ -25,19 +30,32 @@ struct RecoverArgs {
 
 void print_help(std::FILE* out) {
     std::fprintf(out,
-                 "usage: cbr recover IN -o OUT [--keep-exterior] [--allow-open] [-q]\n"
+                 "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open] [-q]\n"
                  "\n"
                  "Tetrahedralizes the points of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh) and recovers every one of its triangles as a face, without\n"
                  "adding any point on the surface (Du & Wang 2004). Writes the tetrahedra of\n"
                  "the bounded regions to OUT (%s, by extension) and prints\n"
-                 "the paper's Table I.\n"
+                 "the paper's Table I (recovery) and Table II (quality q = 3 r_in / r_circ,\n"
+                 "1 for the regular tetrahedron; per region when there are several). The\n"
+                 ".vtu output holds q per tetrahedron (cell data \"quality\").\n"
                  "\n"
                  "  -o OUT           the volume mesh to write (required)\n"
+                 "  --json FILE      also write the run and both tables as JSON (written\n"
+                 "                   for failed runs too, with their status and error)\n"
                  "  --keep-exterior  also write the exterior tetrahedra (region 0)\n"
                  "  --allow-open     recover an open surface too (its faces are recovered,\n"
                  "                   but it bounds no region: use with --keep-exterior)\n"
-                 "  -q               print nothing but errors\n",
+                 "  -q               print nothing but errors (and no progress line)\n"
+                 "\n"
+                 "A progress line is shown on stderr for steps longer than a second when\n"
+                 "stderr is a terminal. CBR_TIMING=1 in the environment prints the time of\n"
+                 "each step on stderr.\n"
+                 "\n"
+                 "exit codes: 0 success; 1 usage; 2 invalid input (a file that does not\n"
+                 "parse, or a surface that cannot be recovered: cbr check says why); 3\n"
+                 "recovery failure; 4 I/O (missing or unreadable input, unknown extension,\n"
+                 "an output that cannot be written); 5 internal error.\n",
                  io::volume_extensions());
 }
 
@@ -53,9 +71,9 @@ int parse_args(int argc, char** argv, RecoverArgs& args) {
             print_help(stdout);
             return kExitOk;
         }
-        if (a == "-o") {
-            if (++i >= argc) return usage_error("-o needs a file name");
-            args.output = argv[i];
+        if (a == "-o" || a == "--json") {
+            if (++i >= argc) return usage_error(a + " needs a file name");
+            (a == "-o" ? args.output : args.json) = argv[i];
         } else if (a == "--keep-exterior") {
             args.keep_exterior = true;
         } else if (a == "--allow-open") {
@@ -72,6 +90,7 @@ int parse_args(int argc, char** argv, RecoverArgs& args) {
     }
     if (args.input.empty()) return usage_error("no input file");
     if (args.output.empty()) return usage_error("no output file (-o OUT)");
+    if (args.json == args.output) return usage_error("--json and -o name the same file");
     if (!io::is_volume_file(args.output)) {
         std::fprintf(stderr, "cbr recover: %s: unknown output format (known: %s)\n", args.output.c_str(),
                      io::volume_extensions());
@@ -80,89 +99,48 @@ int parse_args(int argc, char** argv, RecoverArgs& args) {
     return kContinue;
 }
 
-// The mesh as the writers want it: points, the tetrahedra returned, their
-// regions, the input triangles with labels, which points are Steiner.
-int collect(cbr_mesh* m, const io::SurfaceMesh& surface, io::VolumeMesh& out) {
-    const std::int64_t np = cbr_mesh_point_count(m), nt = cbr_mesh_tet_count(m);
-    out.xyz.resize(3 * static_cast<std::size_t>(np));
-    out.tets.resize(4 * static_cast<std::size_t>(nt));
-    out.tet_regions.resize(static_cast<std::size_t>(nt));
-    std::vector<std::int64_t> steiner(static_cast<std::size_t>(cbr_mesh_steiner_count(m)));
-    int status = cbr_mesh_get_points(m, out.xyz.data());
-    if (status == CBR_OK) status = cbr_mesh_get_tets(m, out.tets.data());
-    if (status == CBR_OK) status = cbr_mesh_get_tet_regions(m, out.tet_regions.data());
-    if (status == CBR_OK) status = cbr_mesh_steiner_points(m, steiner.data());
-    if (status != CBR_OK) return status;
-    out.tris = surface.tris;
-    out.tri_labels = surface.labels;
-    out.tri_labels.resize(surface.tris.size() / 3, 0);
-    out.is_steiner.assign(static_cast<std::size_t>(np), 0);
-    for (std::int64_t s : steiner) out.is_steiner[static_cast<std::size_t>(s)] = 1;
-    return CBR_OK;
-}
-
-int fail(cbr_mesh* m, int status) {
-    std::fprintf(stderr, "cbr recover: %s\n", cbr_mesh_last_error(m));
-    return exit_code_for(status);
-}
-
-int recover(const RecoverArgs& args, const io::SurfaceMesh& surface, cbr_mesh* m) {
-    const auto np = static_cast<std::int64_t>(surface.xyz.size() / 3);
-    const auto nf = static_cast<std::int64_t>(surface.tris.size() / 3);
-    int status = cbr_mesh_set_param(m, CBR_PARAM_KEEP_EXTERIOR, args.keep_exterior ? 1 : 0);
-    if (status == CBR_OK) status = cbr_mesh_insert_points(m, np, surface.xyz.data());
-    if (status == CBR_OK)
-        status = cbr_mesh_recover_faces(m, nf, surface.tris.data(), surface.labels.empty() ? nullptr : surface.labels.data());
-    // Legal for the library, but rarely what a user of the command wants:
-    // an open surface encloses nothing (recover_faces left its check report,
-    // also when it could not recover every face).
-    const std::int64_t open_edges =
-        status == CBR_OK || status == CBR_ERR_RECOVERY_FAILED ? cbr_mesh_defect_count(m, CBR_DEFECT_OPEN_EDGE) : 0;
-    if (open_edges > 0 && !args.allow_open) {
-        std::fprintf(stderr, "cbr recover: %s is open: %lld open edges, it bounds no region (--allow-open to recover it anyway)\n",
-                     args.input.c_str(), static_cast<long long>(open_edges));
-        return kExitInput;
+int recover(const RecoverArgs& args) {
+    Steps steps("recover", args.quiet);
+    const RunDescription run{"recover", args.input, args.output};
+    RecoveryOutcome outcome;
+    io::SurfaceMesh surface;
+    steps.begin("reading", true);
+    const io::Status read = io::read_surface(args.input, surface);
+    if (read.ok()) {
+        RecoveryOptions options;
+        options.input = args.input;
+        options.output = args.output;
+        options.keep_exterior = args.keep_exterior;
+        options.allow_open = args.allow_open;
+        outcome = run_recovery(surface, options, steps);
+    } else {
+        outcome.exit_code = exit_code_for(read.kind);
+        outcome.error = read.message;
     }
-    if (status != CBR_OK) {
-        if (!args.quiet && status == CBR_ERR_RECOVERY_FAILED) print_table_one(m);
-        return fail(m, status);
-    }
-    io::VolumeMesh volume;
-    status = collect(m, surface, volume);
-    if (status != CBR_OK) return fail(m, status);
-    const io::Status written = io::write_volume(args.output, volume);
-    if (!written.ok()) {
-        std::fprintf(stderr, "cbr recover: %s\n", written.message.c_str());
-        return exit_code_for(written.kind);
-    }
-    if (!args.quiet) {
+    steps.end();
+    if (!args.quiet && outcome.exit_code == kExitOk) {
         std::printf("cbr recover: %s -> %s: %zu points, %zu tetrahedra\n", args.input.c_str(), args.output.c_str(),
-                    volume.num_points(), volume.num_tets());
-        print_table_one(m);
+                    outcome.points, outcome.tets);
     }
-    return kExitOk;
+    // Table I also when the recovery itself failed: it says how far it got.
+    if (!args.quiet && outcome.has_table_one) print_table_one(stdout, outcome.table_one);
+    if (!args.quiet && outcome.has_quality) print_table_two(stdout, outcome.quality);
+    return finish_run(run, args.json, outcome, steps);
 }
 
 }  // namespace
 
 int run_recover(int argc, char** argv) {
-    RecoverArgs args;
-    const int parsed = parse_args(argc, argv, args);
-    if (parsed != kContinue) return parsed;
-    io::SurfaceMesh surface;
-    const io::Status read = io::read_surface(args.input, surface);
-    if (!read.ok()) {
-        std::fprintf(stderr, "cbr recover: %s\n", read.message.c_str());
-        return exit_code_for(read.kind);
-    }
-    cbr_mesh* m = nullptr;
-    if (cbr_mesh_create(&m) != CBR_OK) {
+    try {
+        RecoverArgs args;
+        const int parsed = parse_args(argc, argv, args);
+        return parsed != kContinue ? parsed : recover(args);
+    } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "cbr recover: out of memory\n");
-        return kExitInternal;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "cbr recover: internal error: %s\n", e.what());
     }
-    const int code = recover(args, surface, m);
-    cbr_mesh_destroy(m);
-    return code;
+    return kExitInternal;
 }
 
 }  // namespace cbr::cli

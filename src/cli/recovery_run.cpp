@@ -1,0 +1,96 @@
+#include "cli/recovery_run.hpp"
+
+#include <cbr/cbr.h>
+
+#include <string>
+#include <utility>
+
+#include "cli/exit_codes.hpp"
+#include "cli/volume_output.hpp"
+#include "io/write_volume.hpp"
+
+namespace cbr::cli {
+namespace {
+
+// Owns a cbr_mesh.
+struct MeshHandle {
+    cbr_mesh* mesh = nullptr;
+    MeshHandle() = default;
+    MeshHandle(const MeshHandle&) = delete;
+    MeshHandle& operator=(const MeshHandle&) = delete;
+    ~MeshHandle() { cbr_mesh_destroy(mesh); }
+};
+
+RecoveryOutcome failure(int exit_code, std::string message) {
+    RecoveryOutcome out;
+    out.exit_code = exit_code;
+    out.error = std::move(message);
+    return out;
+}
+
+RecoveryOutcome api_failure(const cbr_mesh* m, int status) { return failure(exit_code_for(status), cbr_mesh_last_error(m)); }
+
+}  // namespace
+
+RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptions& options, Steps& steps) {
+    MeshHandle h;
+    int status = cbr_mesh_create(&h.mesh);
+    if (status != CBR_OK) return failure(exit_code_for(status), cbr_status_string(status));
+    cbr_mesh* m = h.mesh;
+    const auto np = static_cast<std::int64_t>(surface.num_points());
+    const auto nf = static_cast<std::int64_t>(surface.num_triangles());
+
+    steps.begin("inserting points");
+    status = cbr_mesh_set_param(m, CBR_PARAM_KEEP_EXTERIOR, options.keep_exterior ? 1 : 0);
+    if (status == CBR_OK) status = cbr_mesh_insert_points(m, np, surface.xyz.data());
+    if (status != CBR_OK) return api_failure(m, status);
+    const std::int64_t delaunay_tets = cbr_mesh_tet_count(m);
+
+    steps.begin("recovering");
+    status = cbr_mesh_recover_faces(m, nf, surface.tris.data(), surface.labels.empty() ? nullptr : surface.labels.data());
+    // Legal for the library, but rarely what a user of the command wants:
+    // an open surface encloses nothing (recover_faces left its check report,
+    // also when it could not recover every face).
+    const std::int64_t open_edges =
+        status == CBR_OK || status == CBR_ERR_RECOVERY_FAILED ? cbr_mesh_defect_count(m, CBR_DEFECT_OPEN_EDGE) : 0;
+    if (open_edges > 0 && !options.allow_open) {
+        return failure(kExitInput, options.input + " is open: " + std::to_string(open_edges) +
+                                       " open edges, it bounds no region (--allow-open to recover it anyway)");
+    }
+    if (status != CBR_OK) {
+        RecoveryOutcome out = api_failure(m, status);
+        out.delaunay_tets = delaunay_tets;
+        if (status == CBR_ERR_RECOVERY_FAILED) {
+            out.has_table_one = true;
+            out.table_one = read_table_one(m);
+        }
+        return out;
+    }
+
+    RecoveryOutcome out;
+    out.delaunay_tets = delaunay_tets;
+    out.has_table_one = true;
+    out.table_one = read_table_one(m);
+    steps.begin("measuring quality");
+    io::VolumeMesh volume;
+    status = collect_volume(m, surface, volume);
+    if (status != CBR_OK) return api_failure(m, status);
+    out.quality = measure_quality(volume);
+    out.has_quality = true;
+    out.points = volume.num_points();
+    out.tets = volume.num_tets();
+    if (!options.output.empty()) {
+        steps.begin("writing", true);
+        const io::Status written = io::write_volume(options.output, volume);
+        if (!written.ok()) {
+            out.exit_code = exit_code_for(written.kind);
+            out.error = written.message;
+            return out;
+        }
+        out.written = true;
+    }
+    steps.end();
+    return out;
+}
+
+}  // namespace cbr::cli

@@ -1,0 +1,40 @@
+// What `cbr recover` and `cbr demo` share: a surface in memory through
+// libcbr (Delaunay, boundary recovery), the result collected, its quality
+// measured (Table II) and, when asked, written. Nothing is printed here:
+// the outcome says what happened, and the command prints it once the
+// progress line is gone.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "cli/quality.hpp"
+#include "cli/steps.hpp"
+#include "cli/table_one.hpp"
+#include "io/mesh_types.hpp"
+
+namespace cbr::cli {
+
+struct RecoveryOptions {
+    std::string input;   // the input's name, for messages
+    std::string output;  // the volume mesh to write; empty: none
+    bool keep_exterior = false;
+    bool allow_open = false;  // accept a surface with open edges
+};
+
+struct RecoveryOutcome {
+    int exit_code = 0;   // kExit* (exit_codes.hpp)
+    std::string error;   // one line for stderr, empty on success
+    bool has_table_one = false;  // recovery ran (to the end, or failed on faces)
+    TableOne table_one;
+    bool has_quality = false;    // recovery succeeded
+    QualityReport quality;
+    std::int64_t delaunay_tets = 0;     // tetrahedra of the Delaunay mesh (all, before recovery)
+    std::size_t points = 0, tets = 0;   // of the recovered mesh
+    bool written = false;               // options.output was written
+};
+
+RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptions& options, Steps& steps);
+
+}  // namespace cbr::cli

@@ -1,0 +1,31 @@
+#include "cli/volume_output.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace cbr::cli {
+
+int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::VolumeMesh& out) {
+    const std::int64_t np = cbr_mesh_point_count(m), nt = cbr_mesh_tet_count(m), ns = cbr_mesh_steiner_count(m);
+    if (np < 0 || nt < 0 || ns < 0) return CBR_ERR_INTERNAL;
+    out.xyz.resize(3 * static_cast<std::size_t>(np));
+    out.tets.resize(4 * static_cast<std::size_t>(nt));
+    out.tet_regions.resize(static_cast<std::size_t>(nt));
+    std::vector<std::int64_t> steiner(static_cast<std::size_t>(ns));
+    int status = cbr_mesh_get_points(m, out.xyz.data());
+    if (status == CBR_OK) status = cbr_mesh_get_tets(m, out.tets.data());
+    if (status == CBR_OK) status = cbr_mesh_get_tet_regions(m, out.tet_regions.data());
+    if (status == CBR_OK) status = cbr_mesh_steiner_points(m, steiner.data());
+    if (status != CBR_OK) return status;
+    out.tris = surface.tris;
+    out.tri_labels = surface.labels;
+    out.tri_labels.resize(surface.tris.size() / 3, 0);
+    out.is_steiner.assign(static_cast<std::size_t>(np), 0);
+    for (std::int64_t s : steiner) {
+        if (s < 0 || s >= np) return CBR_ERR_INTERNAL;
+        out.is_steiner[static_cast<std::size_t>(s)] = 1;
+    }
+    return CBR_OK;
+}
+
+}  // namespace cbr::cli

@@ -1,0 +1,16 @@
+// The recovered mesh as the writers want it (io::VolumeMesh), collected
+// from a cbr_mesh through the public C API: points, the tetrahedra
+// returned (bounded regions, or all with CBR_PARAM_KEEP_EXTERIOR) and their
+// regions, the input triangles with their labels, which points are Steiner.
+#pragma once
+
+#include <cbr/cbr.h>
+
+#include "io/mesh_types.hpp"
+
+namespace cbr::cli {
+
+// Returns CBR_OK or the status of the C API call that failed.
+int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::VolumeMesh& out);
+
+}  // namespace cbr::cli
