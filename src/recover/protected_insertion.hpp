@@ -1,0 +1,54 @@
+// Protected (constrained) Delaunay insertion of one point, with the cavity
+// correction of §5.1 ("Algorithm: Cavity Correction"). Used by conforming
+// recovery (Step 3: added points on missing edges and faces) and by the
+// edge/face-added-point splittings (Steps 4-5: the mirror point inserted
+// with "the half of Ball(e) on e*'s side" as the initial cavity).
+//
+// The cavity never contains a constraint face (TetMesh::is_constrained) or
+// a face the caller forbids (`blocked`) in its interior, so no protected
+// face is ever removed or split. The correction then shrinks (and, across
+// faces coplanar with p, grows) the cavity until every boundary face is
+// strictly visible from p, so the star of p is valid.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::recover {
+
+// True when face `face` of tetrahedron `tet` must not be crossed (e.g. the
+// already-recovered parts of the face being recovered). Asked from either
+// side of a face; it need not be symmetric.
+using BlockedFace = std::function<bool(mesh::TetId tet, int face)>;
+
+struct ProtectedInsertResult {
+    bool ok = false;
+    std::string why;                   // when !ok: readable reason
+    std::vector<mesh::TetId> created;  // when ok: the star of p
+    // Statistics of the §5.1 correction (also filled on failure).
+    std::size_t initial_cavity = 0;  // tetrahedra before the correction
+    std::size_t removed = 0;         // tetrahedra taken out
+    std::size_t added = 0;           // tetrahedra taken in (coplanar faces)
+};
+
+// Inserts vertex p (coordinates already stored, in no tetrahedron yet).
+// `start` is a live finite tetrahedron that contains p (closed). The
+// cavity is the Bowyer-Watson one (insphere_sos; ghosts by the kernel's
+// test), grown from `start` without crossing a protected face, then
+// corrected (§5.1). On failure (p on a protected face, p equal to a vertex,
+// `start` not containing p, replace_tets refusing) the mesh is unchanged
+// bit for bit.
+ProtectedInsertResult insert_protected(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
+                                       const BlockedFace& blocked = {});
+
+// Same, with an explicit initial cavity (live tetrahedra; must contain
+// `start` and no protected face between two of its members) instead of
+// the grown one; then the §5.1 correction.
+ProtectedInsertResult insert_protected_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
+                                                 const std::vector<mesh::TetId>& cavity,
+                                                 const BlockedFace& blocked = {});
+
+}  // namespace cbr::recover
