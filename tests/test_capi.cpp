@@ -11,24 +11,14 @@
 #include <string>
 #include <thread>
 
+#include "capi_test_util.hpp"
 #include "test_util.hpp"
 
 namespace {
 
-struct Handle {
-    cbr_mesh* m = nullptr;
-    Handle() { REQUIRE(cbr_mesh_create(&m) == CBR_OK); }
-    ~Handle() { cbr_mesh_destroy(m); }
-    std::string error() const { return cbr_mesh_last_error(m); }
-};
-
-std::vector<std::int64_t> tets_of(const cbr_mesh* m) {
-    std::vector<std::int64_t> t(4 * static_cast<std::size_t>(cbr_mesh_tet_count(m)));
-    REQUIRE(cbr_mesh_get_tets(m, t.data()) == CBR_OK);
-    return t;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using cbr::test::contains;
+using cbr::test::Handle;
+using cbr::test::tets_of;
 
 const std::vector<double> kCubeAndCentre = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1,
                                             1, 0, 1, 0, 1, 1, 1, 1, 1, 0.5, 0.5, 0.5};

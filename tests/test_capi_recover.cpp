@@ -10,30 +10,20 @@
 #include <set>
 #include <string>
 
+#include "capi_test_util.hpp"
 #include "test_util.hpp"
 
 namespace {
 
-struct Handle {
-    cbr_mesh* m = nullptr;
-    Handle() { REQUIRE(cbr_mesh_create(&m) == CBR_OK); }
-    ~Handle() { cbr_mesh_destroy(m); }
-    std::string error() const { return cbr_mesh_last_error(m); }
-};
-
-std::vector<std::int64_t> tets_of(const cbr_mesh* m) {
-    std::vector<std::int64_t> t(4 * static_cast<std::size_t>(cbr_mesh_tet_count(m)));
-    REQUIRE(cbr_mesh_get_tets(m, t.data()) == CBR_OK);
-    return t;
-}
+using cbr::test::contains;
+using cbr::test::Handle;
+using cbr::test::tets_of;
 
 double stat(const cbr_mesh* m, int key) {
     double v = -1;
     REQUIRE(cbr_mesh_get_stat(m, key, &v) == CBR_OK);
     return v;
 }
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // The boundary of the Delaunay tetrahedra whose centroid lies within 0.3 of
 // the centre, outward: a closed surface made of faces that are present.

@@ -23,11 +23,4 @@ TEST_CASE("vertices of every shared surface") {
     }
 }
 
-int main(int argc, char** argv) {
-    if (cbr::test::shared_data_dir().empty()) {
-        std::puts("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return 77;
-    }
-    doctest::Context context(argc, argv);
-    return context.run();
-}
+CBR_TEST_MAIN_NEEDING_SHARED_DATA

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +110,19 @@ inline bool read_off(const std::string& path, OffSurface& s) {
     }
     return true;
 }
+
+// main() of a doctest executable that needs the shared data: exit 77 (a
+// skip for ctest) with a one-line reason when it is absent. Define
+// DOCTEST_CONFIG_IMPLEMENT before including doctest in that file.
+#define CBR_TEST_MAIN_NEEDING_SHARED_DATA                                                     \
+    int main(int argc, char** argv) {                                                        \
+        if (cbr::test::shared_data_dir().empty()) {                                          \
+            std::puts("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)"); \
+            return 77;                                                                       \
+        }                                                                                    \
+        doctest::Context context(argc, argv);                                                \
+        return context.run();                                                                \
+    }
 
 inline std::vector<std::string> shared_surfaces() {
     std::vector<std::string> files;

@@ -10,6 +10,7 @@
 //     bounding box here (surface_topology.hpp);
 //  5. print the report; exit 0 when nothing stops a recovery, else 2.
 #include "cli/check_command.hpp"
+#include "cli/mesh_handle.hpp"
 
 #include <cbr/cbr.h>
 
@@ -116,15 +117,6 @@ Merged merge_duplicates(const io::SurfaceMesh& s, const DuplicatePoints& dups) {
         if (id >= 0 && static_cast<std::size_t>(id) < n) id = merged_id[static_cast<std::size_t>(id)];
     return m;
 }
-
-// Owns a cbr_mesh.
-struct MeshHandle {
-    cbr_mesh* mesh = nullptr;
-    MeshHandle() = default;
-    MeshHandle(const MeshHandle&) = delete;
-    MeshHandle& operator=(const MeshHandle&) = delete;
-    ~MeshHandle() { cbr_mesh_destroy(mesh); }
-};
 
 // The last error of `mesh` without the name of the function.
 std::string api_message(const cbr_mesh* mesh) {

@@ -1,4 +1,5 @@
 #include "cli/recovery_run.hpp"
+#include "cli/mesh_handle.hpp"
 
 #include <cbr/cbr.h>
 
@@ -11,15 +12,6 @@
 
 namespace cbr::cli {
 namespace {
-
-// Owns a cbr_mesh.
-struct MeshHandle {
-    cbr_mesh* mesh = nullptr;
-    MeshHandle() = default;
-    MeshHandle(const MeshHandle&) = delete;
-    MeshHandle& operator=(const MeshHandle&) = delete;
-    ~MeshHandle() { cbr_mesh_destroy(mesh); }
-};
 
 RecoveryOutcome failure(int exit_code, std::string message) {
     RecoveryOutcome out;
