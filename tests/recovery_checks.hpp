@@ -1,0 +1,142 @@
+// The project's own exact checks of a recovered mesh, through the C API:
+// every input triangle a face, every tetrahedron positively oriented, no
+// Steiner point on an input triangle, the bounded regions' volume equal to
+// the enclosed volume, regions that differ across every input triangle.
+// Shared by test_recover_surfaces.cpp and test_hard_cases.cpp; include it
+// after <doctest/doctest.h>.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <cbr/cbr.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "geom/predicates.hpp"
+
+namespace cbr::test {
+
+using Face = std::array<std::int64_t, 3>;
+inline Face sorted_face(std::int64_t a, std::int64_t b, std::int64_t c) {
+    Face f = {a, b, c};
+    std::sort(f.begin(), f.end());
+    return f;
+}
+
+// The four faces of a tetrahedron (a, b, c, d), as local vertex indices.
+inline constexpr int kTetFace[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
+inline long double six_volume(const double* a, const double* b, const double* c, const double* d) {
+    long double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = static_cast<long double>(b[k]) - a[k];
+        v[k] = static_cast<long double>(c[k]) - a[k];
+        w[k] = static_cast<long double>(d[k]) - a[k];
+    }
+    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+// p in the closed triangle abc (exact): coplanar, and on the inner side of
+// the three edge planes through a point d off the plane.
+inline bool on_triangle(const double* p, const double* a, const double* b, const double* c) {
+    if (cbr::geom::orient3d(a, b, c, p) != 0) return false;
+    double d[3];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) d[k] = a[k] + n[k];
+    const int side = cbr::geom::orient3d(a, b, c, d);
+    if (side == 0) return false;  // cannot happen for a valid (non-degenerate) triangle
+    return cbr::geom::orient3d(a, b, d, p) * side >= 0 && cbr::geom::orient3d(b, c, d, p) * side >= 0 &&
+           cbr::geom::orient3d(c, a, d, p) * side >= 0;
+}
+
+// Six times the signed volume the triangles enclose (divergence theorem).
+inline long double six_signed_volume(const std::vector<double>& xyz, const std::vector<std::int64_t>& tris) {
+    long double sum = 0;
+    const double origin[3] = {0, 0, 0};
+    for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+        sum += six_volume(origin, &xyz[3 * static_cast<std::size_t>(tris[i])],
+                          &xyz[3 * static_cast<std::size_t>(tris[i + 1])], &xyz[3 * static_cast<std::size_t>(tris[i + 2])]);
+    return sum;
+}
+
+// Every directed edge used exactly once, and its reverse too: a closed,
+// consistently oriented manifold surface.
+inline bool closed_and_consistent(const std::vector<std::int64_t>& tris) {
+    std::map<std::pair<std::int64_t, std::int64_t>, int> directed;
+    for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+        for (int k = 0; k < 3; ++k) ++directed[{tris[i + k], tris[i + (k + 1) % 3]}];
+    for (const auto& [edge, count] : directed)
+        if (count != 1 || directed.count({edge.second, edge.first}) == 0) return false;
+    return true;
+}
+
+// The enclosed volume when the surface is closed and consistently oriented;
+// 0 otherwise.
+inline long double enclosed_volume(const std::vector<double>& xyz, const std::vector<std::int64_t>& tris) {
+    if (!closed_and_consistent(tris)) return 0;
+    const long double six = six_signed_volume(xyz, tris);
+    return (six < 0 ? -six : six) / 6;
+}
+
+// Proves the recovered mesh in `m` for the input points `xyz` and triangles
+// `tris` (0-based). The bounded regions must fill `expected_volume` when it
+// is positive (nested or shared-face inputs, where the enclosed volume of
+// the triangles is not the domain's), else enclosed_volume(xyz, tris) when
+// that is defined. Sets CBR_PARAM_KEEP_EXTERIOR.
+inline void check_recovered(cbr_mesh* m, const std::vector<double>& xyz, const std::vector<std::int64_t>& tris,
+                            double expected_volume = 0) {
+    REQUIRE(cbr_mesh_set_param(m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
+    const std::int64_t nt = cbr_mesh_tet_count(m), np = cbr_mesh_point_count(m);
+    std::vector<std::int64_t> tets(4 * static_cast<std::size_t>(nt));
+    std::vector<std::int32_t> regions(static_cast<std::size_t>(nt));
+    std::vector<double> pts(3 * static_cast<std::size_t>(np));
+    REQUIRE(cbr_mesh_get_tets(m, tets.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_get_tet_regions(m, regions.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_get_points(m, pts.data()) == CBR_OK);
+    auto P = [&](std::int64_t v) { return &pts[3 * static_cast<std::size_t>(v)]; };
+
+    // Input points unchanged, bit for bit.
+    REQUIRE(pts.size() >= xyz.size());
+    CHECK(std::equal(xyz.begin(), xyz.end(), pts.begin()));
+    // Orientation, faces, regions on both sides of each face.
+    std::map<Face, std::vector<std::int32_t>> face_regions;
+    long double bounded = 0;
+    std::size_t inverted = 0;
+    for (std::size_t t = 0; t < static_cast<std::size_t>(nt); ++t) {
+        const std::int64_t* v = &tets[4 * t];
+        if (cbr::geom::orient3d(P(v[0]), P(v[1]), P(v[2]), P(v[3])) <= 0) ++inverted;
+        if (regions[t] > 0) bounded += six_volume(P(v[0]), P(v[1]), P(v[2]), P(v[3]));
+        for (const auto& f : kTetFace) face_regions[sorted_face(v[f[0]], v[f[1]], v[f[2]])].push_back(regions[t]);
+    }
+    CHECK(inverted == 0);
+    std::size_t missing = 0, same_region = 0;
+    for (std::size_t i = 0; i + 2 < tris.size(); i += 3) {
+        const auto it = face_regions.find(sorted_face(tris[i], tris[i + 1], tris[i + 2]));
+        if (it == face_regions.end()) {
+            ++missing;
+            continue;
+        }
+        if (it->second.size() == 2 && it->second[0] == it->second[1]) ++same_region;
+    }
+    CHECK(missing == 0);
+    CHECK(same_region == 0);
+    // Steiner points: none on any input triangle (exact).
+    std::vector<std::int64_t> steiner(static_cast<std::size_t>(cbr_mesh_steiner_count(m)));
+    REQUIRE(cbr_mesh_steiner_points(m, steiner.data()) == CBR_OK);
+    std::size_t on_surface = 0;
+    for (std::int64_t sp : steiner)
+        for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+            on_surface += on_triangle(P(sp), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
+    CHECK(on_surface == 0);
+    // Volume of the bounded regions = volume of the domain.
+    const long double enclosed = expected_volume > 0 ? expected_volume : enclosed_volume(xyz, tris);
+    if (enclosed > 0) CHECK(static_cast<double>(bounded / 6 / enclosed) == doctest::Approx(1.0).epsilon(1e-9));
+}
+
+}  // namespace cbr::test
