@@ -1,4 +1,5 @@
 #include "cli/demo_command.hpp"
+#include "cli/output_options.hpp"
 
 #include <cbr/cbr.h>
 
@@ -22,10 +23,7 @@ namespace {
 constexpr int kContinue = -1;
 constexpr const char* kInputName = "nine-sphere box (built-in)";
 
-struct DemoArgs {
-    std::string output, json;
-    bool quiet = false;
-};
+struct DemoArgs : OutputOptions {};
 
 void print_help(std::FILE* out) {
     std::fprintf(out,
@@ -44,11 +42,6 @@ void print_help(std::FILE* out) {
                  io::volume_extensions());
 }
 
-int usage_error(const std::string& message) {
-    std::fprintf(stderr, "cbr demo: %s (try cbr demo --help)\n", message.c_str());
-    return kExitUsage;
-}
-
 int parse_args(int argc, char** argv, DemoArgs& args) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -56,22 +49,14 @@ int parse_args(int argc, char** argv, DemoArgs& args) {
             print_help(stdout);
             return kExitOk;
         }
-        if (a == "-o" || a == "--json") {
-            if (++i >= argc) return usage_error(a + " needs a file name");
-            (a == "-o" ? args.output : args.json) = argv[i];
-        } else if (a == "-q") {
-            args.quiet = true;
-        } else {
-            return usage_error("unknown argument '" + a + "'");
+        int error = kContinue;
+        if (take_output_option("demo", argc, argv, i, args, error)) {
+            if (error != kContinue) return error;
+            continue;
         }
+        return usage_error("demo", "unknown argument '" + a + "'");
     }
-    if (!args.json.empty() && args.json == args.output) return usage_error("--json and -o name the same file");
-    if (!args.output.empty() && !io::is_volume_file(args.output)) {
-        std::fprintf(stderr, "cbr demo: %s: unknown output format (known: %s)\n", args.output.c_str(),
-                     io::volume_extensions());
-        return kExitIo;
-    }
-    return kContinue;
+    return check_output_options("demo", args);
 }
 
 io::SurfaceMesh demo_surface() {

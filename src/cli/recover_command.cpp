@@ -1,4 +1,5 @@
 #include "cli/recover_command.hpp"
+#include "cli/output_options.hpp"
 
 #include <cbr/cbr.h>
 
@@ -21,11 +22,10 @@ namespace {
 
 constexpr int kContinue = -1;
 
-struct RecoverArgs {
-    std::string input, output, json;
+struct RecoverArgs : OutputOptions {
+    std::string input;
     bool keep_exterior = false;
     bool allow_open = false;
-    bool quiet = false;
 };
 
 void print_help(std::FILE* out) {
@@ -59,11 +59,6 @@ void print_help(std::FILE* out) {
                  io::volume_extensions());
 }
 
-int usage_error(const std::string& message) {
-    std::fprintf(stderr, "cbr recover: %s (try cbr recover --help)\n", message.c_str());
-    return kExitUsage;
-}
-
 int parse_args(int argc, char** argv, RecoverArgs& args) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -71,32 +66,24 @@ int parse_args(int argc, char** argv, RecoverArgs& args) {
             print_help(stdout);
             return kExitOk;
         }
-        if (a == "-o" || a == "--json") {
-            if (++i >= argc) return usage_error(a + " needs a file name");
-            (a == "-o" ? args.output : args.json) = argv[i];
+        int error = kContinue;
+        if (take_output_option("recover", argc, argv, i, args, error)) {
+            if (error != kContinue) return error;
         } else if (a == "--keep-exterior") {
             args.keep_exterior = true;
         } else if (a == "--allow-open") {
             args.allow_open = true;
-        } else if (a == "-q") {
-            args.quiet = true;
         } else if (!a.empty() && a[0] == '-') {
-            return usage_error("unknown option '" + a + "'");
+            return usage_error("recover", "unknown option '" + a + "'");
         } else if (!args.input.empty()) {
-            return usage_error("one input file only");
+            return usage_error("recover", "one input file only");
         } else {
             args.input = a;
         }
     }
-    if (args.input.empty()) return usage_error("no input file");
-    if (args.output.empty()) return usage_error("no output file (-o OUT)");
-    if (args.json == args.output) return usage_error("--json and -o name the same file");
-    if (!io::is_volume_file(args.output)) {
-        std::fprintf(stderr, "cbr recover: %s: unknown output format (known: %s)\n", args.output.c_str(),
-                     io::volume_extensions());
-        return kExitIo;
-    }
-    return kContinue;
+    if (args.input.empty()) return usage_error("recover", "no input file");
+    if (args.output.empty()) return usage_error("recover", "no output file (-o OUT)");
+    return check_output_options("recover", args);
 }
 
 int recover(const RecoverArgs& args) {
