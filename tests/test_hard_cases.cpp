@@ -20,6 +20,7 @@
 #include <set>
 #include <string>
 
+#include "capi_test_util.hpp"
 #include "hard_cases.hpp"
 #include "recovery_checks.hpp"
 #include "test_util.hpp"
@@ -58,6 +59,10 @@ const std::vector<HardCase>& hard_cases() {
     return cases;
 }
 
+void insert_points(cbr_mesh* m, const cbr::test::Polyhedron& p) {
+    REQUIRE(cbr_mesh_insert_points(m, static_cast<std::int64_t>(p.xyz.size() / 3), p.xyz.data()) == CBR_OK);
+}
+
 }  // namespace
 
 TEST_CASE("hard cases: the surfaces themselves are valid") {
@@ -66,9 +71,9 @@ TEST_CASE("hard cases: the surfaces themselves are valid") {
         CAPTURE(name);
         const cbr::test::Polyhedron p = c.make();
         const auto ntris = static_cast<std::int64_t>(p.tris.size() / 3);
-        cbr_mesh* m = nullptr;
-        REQUIRE(cbr_mesh_create(&m) == CBR_OK);
-        REQUIRE(cbr_mesh_insert_points(m, static_cast<std::int64_t>(p.xyz.size() / 3), p.xyz.data()) == CBR_OK);
+        const cbr::test::Handle h;
+        cbr_mesh* m = h.m;
+        insert_points(m, p);
         CHECK(cbr_mesh_check_faces(m, ntris, p.tris.data()) == CBR_OK);
         CHECK(cbr_mesh_defect_count(m, CBR_DEFECT_OPEN_EDGE) == 0);
         // Shared faces make edges used by three triangles; nothing else does.
@@ -82,7 +87,6 @@ TEST_CASE("hard cases: the surfaces themselves are valid") {
                 CHECK(static_cast<double>(cbr::test::six_signed_volume(p.xyz, p.tris) / 6) ==
                       doctest::Approx(c.volume).epsilon(1e-12));
         }
-        cbr_mesh_destroy(m);
     }
 }
 
@@ -92,9 +96,9 @@ TEST_CASE("hard cases: recovery, as today") {
         CAPTURE(name);
         const cbr::test::Polyhedron p = c.make();
         const auto ntris = static_cast<std::int64_t>(p.tris.size() / 3);
-        cbr_mesh* m = nullptr;
-        REQUIRE(cbr_mesh_create(&m) == CBR_OK);
-        REQUIRE(cbr_mesh_insert_points(m, static_cast<std::int64_t>(p.xyz.size() / 3), p.xyz.data()) == CBR_OK);
+        const cbr::test::Handle h;
+        cbr_mesh* m = h.m;
+        insert_points(m, p);
         const std::int64_t delaunay_tets = cbr_mesh_tet_count(m);
         const int status = cbr_mesh_recover_faces(m, ntris, p.tris.data(), nullptr);
         double missing = -1, flips = -1, regions = -1, seconds = -1;
@@ -129,6 +133,5 @@ TEST_CASE("hard cases: recovery, as today") {
             CHECK(flips < missing);
             if (status == CBR_OK) MESSAGE("now recovered: set `recovered` for this case and check it");
         }
-        cbr_mesh_destroy(m);
     }
 }

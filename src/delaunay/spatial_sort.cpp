@@ -101,13 +101,6 @@ std::vector<KeyedId> hilbert_keys(const double* coords, const mesh::VertexId* fi
 
 }  // namespace
 
-void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* last) {
-    std::vector<KeyedId> items = hilbert_keys(coords, first, last);
-    if (items.size() < 2) return;
-    radix_sort(items, 3 * kHilbertBits);
-    for (std::size_t i = 0; i < items.size(); ++i) first[i] = items[i].id;
-}
-
 void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint64_t seed) {
     // Keys first, in the given order (sequential memory access), then the
     // shuffle and the rounds move (key, id) pairs only: no coordinate is

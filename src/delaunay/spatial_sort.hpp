@@ -15,9 +15,6 @@ namespace cbr::delaunay {
 // x, y, z < 2^bits, bits <= 21.
 std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits);
 
-// Sorts ids along a Hilbert curve over the bounding box of their points.
-void hilbert_sort(const double* coords, mesh::VertexId* first, mesh::VertexId* last);
-
 // Reorders ids into BRIO rounds, each Hilbert-sorted. Deterministic for a
 // given seed.
 void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint64_t seed);

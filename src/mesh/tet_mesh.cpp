@@ -54,9 +54,4 @@ void TetMesh::clear_tets() {
     free_.clear();
 }
 
-std::size_t TetMesh::memory_bytes() const {
-    return coords_.capacity() * sizeof(double) + tets_.capacity() * sizeof(TetRecord) + flags_.capacity() +
-           free_.capacity() * sizeof(TetId);
-}
-
 }  // namespace cbr::mesh

@@ -111,9 +111,6 @@ public:
     void reserve_tets(std::size_t count);
     void clear_tets();
 
-    // Bytes held by the arrays (capacity, not size): for memory reports.
-    std::size_t memory_bytes() const;
-
 private:
     static std::uint8_t constraint_bit(int f) { return static_cast<std::uint8_t>(kFlagConstraintFace0 << f); }
 
