@@ -69,6 +69,11 @@ public:
     VertexId add_points(const double* xyz, std::size_t count);
     void truncate_vertices(std::size_t count);
     const std::vector<double>& coordinates() const { return coords_; }
+    // Moves vertex v to xyz (3 doubles): Steiner point repositioning (§6).
+    // The caller keeps every tetrahedron incident to v positively oriented.
+    void set_point(VertexId v, const double* xyz) {
+        for (std::size_t k = 0; k < 3; ++k) coords_[3 * std::size_t{v} + k] = xyz[k];
+    }
 
     // --- tetrahedra -------------------------------------------------------
     // Number of slots, including free ones; ids run over [0, slot_count()).

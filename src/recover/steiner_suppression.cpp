@@ -1,0 +1,379 @@
+// Steiner point suppression (§6). Every change goes through replace_tets
+// (directly, or through the flips of mesh/flips), so each step is exact:
+// fresh tetrahedra positively oriented, the region tiled, no constraint
+// face removed.
+//
+// Why only edges at v are ever removed: a contraction and the final 4-1
+// remove the edges v-x and keep the link (the ball's boundary) as it is; an
+// edge removal of v-x removes v-x only; a 2-3 flip removes no edge. So the
+// protection callback is asked once, up front, about every edge v-x, and
+// no other edge of the mesh can disappear.
+//
+// Why the flipping terminates: every kept step is an edge removal at v
+// (the degree of v drops by one) or a 2-3 flip kept only because it makes
+// an edge removal at v possible; a step budget bounds the rare case where
+// replace_tets still refuses that removal.
+//
+// Why rollback is exact: all steps happen inside the region of the
+// original ball (an edge removal of v-x replaces the shell of v-x, which
+// lies in Ball(v); a 2-3 flip of a face at v replaces two ball
+// tetrahedra), so the live tetrahedra created there tile that region and
+// replace_tets can put the original tetrahedra back.
+#include "recover/steiner_suppression.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <set>
+
+#include "mesh/ball_shell.hpp"
+#include "mesh/errors.hpp"
+#include "mesh/surgery.hpp"
+
+namespace cbr::recover {
+
+using mesh::kGhostVertex;
+using mesh::TetId;
+using mesh::TetMesh;
+using mesh::VertexId;
+
+namespace {
+
+using Tet = std::array<VertexId, 4>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool live(const TetMesh& m, TetId t) { return t < m.slot_count() && !m.is_free(t); }
+
+Tet tet_of(const TetMesh& m, TetId t) { return {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)}; }
+
+double quality(const TetMesh& m, const Tet& t) {
+    return mesh::tet_quality(m.point(t[0]), m.point(t[1]), m.point(t[2]), m.point(t[3]));
+}
+
+// The link vertices of v (sorted, so that every choice is deterministic).
+std::vector<VertexId> link_vertices(const TetMesh& m, VertexId v, const std::vector<TetId>& ball) {
+    std::vector<VertexId> out;
+    for (TetId t : ball)
+        for (int i = 0; i < 4; ++i)
+            if (m.vertex(t, i) != v) out.push_back(m.vertex(t, i));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// Mechanism 1 (and the 4-1 flip, which is a contraction of a ball of four).
+struct Contraction {
+    VertexId target = kGhostVertex;
+    double min_quality = -kInf;
+    std::vector<Tet> fresh;
+};
+
+// The contraction of v onto x: ball tetrahedra without x with v replaced
+// by x (same position, so a valid one keeps its orientation sign).
+Contraction contraction_onto(const TetMesh& m, VertexId v, VertexId x, const std::vector<TetId>& ball) {
+    Contraction c;
+    c.target = x;
+    c.min_quality = kInf;
+    for (TetId t : ball) {
+        Tet k = tet_of(m, t);
+        if (std::find(k.begin(), k.end(), x) != k.end()) continue;
+        for (VertexId& w : k)
+            if (w == v) w = x;
+        c.min_quality = std::min(c.min_quality, quality(m, k));
+        c.fresh.push_back(k);
+    }
+    return c;
+}
+
+// Tries the valid contractions, best minimum quality first (ties: smaller
+// target id). True when one was done; `region` then holds the new tets.
+bool contract(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region, double& min_quality) {
+    std::vector<Contraction> options;
+    for (VertexId x : link_vertices(m, v, ball)) {
+        Contraction c = contraction_onto(m, v, x, ball);
+        if (c.min_quality > -kInf && !c.fresh.empty()) options.push_back(std::move(c));
+    }
+    std::stable_sort(options.begin(), options.end(),
+                     [](const Contraction& a, const Contraction& b) { return a.min_quality > b.min_quality; });
+    for (const Contraction& c : options) {
+        std::vector<TetId> created;
+        // Refusals here are configurations (a link that is not star-shaped
+        // from x, a constraint face), not bugs: try the next target.
+        if (mesh::replace_tets(m, ball, c.fresh, &created) != mesh::ReplaceResult::kDone) continue;
+        for (TetId t : ball) region.erase(t);
+        region.insert(created.begin(), created.end());
+        min_quality = c.min_quality;
+        return true;
+    }
+    return false;
+}
+
+// An edge removal of v-x that best_ring_triangulation finds valid.
+struct Removal {
+    VertexId x = kGhostVertex;
+    double min_quality = -kInf;
+    mesh::Shell shell;
+    std::vector<mesh::RingTriangle> triangles;
+};
+
+std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vector<TetId>& ball) {
+    std::vector<Removal> out;
+    for (VertexId x : link_vertices(m, v, ball)) {
+        const TetId t = mesh::find_edge_tet(m, v, ball.front(), x);
+        Removal r;
+        r.x = x;
+        if (t == mesh::kNoTet || !mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
+        r.triangles = mesh::best_ring_triangulation(m, v, x, r.shell, &r.min_quality);
+        if (!r.triangles.empty()) out.push_back(std::move(r));
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const Removal& a, const Removal& b) { return a.min_quality > b.min_quality; });
+    return out;
+}
+
+// One edge removal at v (the best valid one that replace_tets accepts).
+bool remove_one_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region) {
+    for (const Removal& r : edge_removals(m, v, ball)) {
+        std::vector<TetId> created;
+        if (mesh::transform_shell(m, v, r.x, r.shell, r.triangles, &created) != mesh::FlipResult::kDone) continue;
+        for (TetId t : r.shell.tets) region.erase(t);
+        region.insert(created.begin(), created.end());
+        return true;
+    }
+    return false;
+}
+
+// A tetrahedron of the region that contains v (its ball is then found
+// from it), or kNoTet.
+TetId tet_at(const TetMesh& m, VertexId v, const std::set<TetId>& region) {
+    for (TetId t : region)
+        if (live(m, t) && mesh::vertex_index(m, t, v) >= 0) return t;
+    return mesh::kNoTet;
+}
+
+// The edges ab of the link of v: the faces (v, a, b) inside the ball.
+std::vector<std::array<VertexId, 2>> link_edges(const TetMesh& m, VertexId v, const std::vector<TetId>& ball) {
+    std::vector<std::array<VertexId, 2>> out;
+    for (TetId t : ball)
+        for (int f = 0; f < 4; ++f) {
+            if (m.vertex(t, f) == v) continue;
+            std::array<VertexId, 2> e;
+            int k = 0;
+            for (int i = 0; i < 4; ++i)
+                if (i != f && m.vertex(t, i) != v) e[static_cast<std::size_t>(k++)] = m.vertex(t, i);
+            if (e[0] > e[1]) std::swap(e[0], e[1]);
+            out.push_back(e);
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// Face f of a ball tetrahedron that is (v, a, b): f is the position of
+// the vertex other than v, a, b. False when no ball tetrahedron has it.
+bool find_face(const TetMesh& m, VertexId v, VertexId a, VertexId b, const std::vector<TetId>& ball, TetId& t,
+               int& f) {
+    for (TetId k : ball) {
+        if (mesh::vertex_index(m, k, a) < 0 || mesh::vertex_index(m, k, b) < 0) continue;
+        for (int i = 0; i < 4; ++i) {
+            const VertexId w = m.vertex(k, i);
+            if (w != v && w != a && w != b) {
+                t = k;
+                f = i;
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+// A 2-3 flip of a face (v, a, b) inside the ball: the two ball
+// tetrahedra (v, a, b, c) and (v, a, b, d) become three around the new edge
+// cd, one of which, (a, b, c, d), leaves the ball. In the link this flips
+// edge ab to cd; the degree of v is unchanged. Kept only when it makes an
+// edge removal at v possible (one step of look-ahead); otherwise undone by
+// the inverse 3-2 flip of cd, and the next link edge is tried.
+bool flip_link_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball0, std::set<TetId>& region,
+                    SuppressReport& rep) {
+    std::vector<TetId> ball;
+    for (const auto& [a, b] : link_edges(m, v, ball0)) {
+        const TetId at = tet_at(m, v, region);
+        TetId t = mesh::kNoTet;
+        int f = -1;
+        if (at == mesh::kNoTet || !mesh::ball(m, v, at, ball) || !find_face(m, v, a, b, ball, t, f)) continue;
+        const TetId n = mesh::facet_tet(m.neighbor(t, f));
+        const VertexId c = m.vertex(t, f);
+        const VertexId d = m.vertex(n, mesh::facet_face(m.neighbor(t, f)));
+        std::vector<TetId> created;
+        if (mesh::flip23(m, t, f, {}, &created) != mesh::FlipResult::kDone) continue;
+        ++rep.flips;
+        region.erase(t);
+        region.erase(n);
+        region.insert(created.begin(), created.end());
+        TetId at_v = mesh::kNoTet;
+        for (TetId k : created)
+            if (mesh::vertex_index(m, k, v) >= 0) at_v = k;
+        if (at_v != mesh::kNoTet && mesh::ball(m, v, at_v, ball) && !edge_removals(m, v, ball).empty()) {
+            ++rep.link_flips;
+            return true;
+        }
+        // Undo: the 3-2 flip of the edge cd just made (no protection: cd
+        // is new).
+        std::vector<TetId> back;
+        if (mesh::flip32(m, created.front(), c, d, {}, &back) != mesh::FlipResult::kDone)
+            throw InternalError("steiner suppression: the 3-2 flip undoing a 2-3 flip was refused");
+        ++rep.flips;
+        ++rep.flips_undone;
+        for (TetId k : created) region.erase(k);
+        region.insert(back.begin(), back.end());
+    }
+    return false;
+}
+
+// Puts the original tetrahedra back into the region (exact inverse).
+void rollback(TetMesh& m, const std::set<TetId>& region, const std::vector<Tet>& original) {
+    const std::vector<TetId> now(region.begin(), region.end());
+    if (mesh::replace_tets(m, now, original) != mesh::ReplaceResult::kDone)
+        throw InternalError("steiner suppression: rollback of the ball refused");
+}
+
+// Mechanism 2; on failure the caller rolls the region back.
+bool flip_down(TetMesh& m, VertexId v, std::set<TetId>& region, const SuppressOptions& options,
+               SuppressReport& rep) {
+    const bool contraction = options.contraction;
+    const std::size_t budget = options.max_flip_steps ? options.max_flip_steps : 2 * region.size() + 8;
+    std::vector<TetId> ball;
+    for (std::size_t step = 0; step < budget; ++step) {
+        const TetId at = tet_at(m, v, region);
+        if (at == mesh::kNoTet || !mesh::ball(m, v, at, ball)) return false;
+        // The 4-1 flip; or any contraction when mechanism 1 is allowed
+        // (at step 0 it was just tried on this very ball).
+        if ((ball.size() == 4 || (contraction && step > 0)) && contract(m, v, ball, region, rep.min_quality))
+            return true;
+        if (remove_one_edge(m, v, ball, region)) {
+            ++rep.flips;
+            ++rep.edge_removals;
+            continue;
+        }
+        if (!flip_link_edge(m, v, ball, region, rep)) return false;
+    }
+    return false;
+}
+
+}  // namespace
+
+const char* to_string(SuppressResult r) {
+    switch (r) {
+        case SuppressResult::kSuppressed: return "suppressed";
+        case SuppressResult::kBadInput: return "bad input";
+        case SuppressResult::kHullVertex: return "hull vertex";
+        case SuppressResult::kOnConstraint: return "on a constraint face";
+        case SuppressResult::kProtectedEdge: return "protected edge";
+        case SuppressResult::kNoRetriangulation: return "no retriangulation of the ball without it";
+    }
+    return "?";
+}
+
+bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtect& protect, SuppressReport* report,
+                     const SuppressOptions& options) {
+    SuppressReport local;
+    SuppressReport& rep = report ? *report : local;
+    rep = SuppressReport{};
+    std::vector<TetId> ball;
+    if (v == kGhostVertex || !mesh::ball(m, v, start, ball)) {
+        rep.result = SuppressResult::kBadInput;
+        return false;
+    }
+    if (std::any_of(ball.begin(), ball.end(), [&](TetId t) { return m.is_ghost(t); })) {
+        rep.result = SuppressResult::kHullVertex;
+        return false;
+    }
+    for (TetId t : ball) {
+        for (int f = 0; f < 4; ++f)
+            if (m.vertex(t, f) != v && m.is_constrained(t, f)) {
+                rep.result = SuppressResult::kOnConstraint;
+                return false;
+            }
+    }
+    if (protect)
+        for (VertexId x : link_vertices(m, v, ball))
+            if (protect(v, x)) {
+                rep.result = SuppressResult::kProtectedEdge;
+                return false;
+            }
+
+    std::set<TetId> region(ball.begin(), ball.end());
+    std::vector<Tet> original;
+    for (TetId t : ball) original.push_back(tet_of(m, t));
+
+    bool done = false;
+    if (options.contraction && contract(m, v, ball, region, rep.min_quality)) {
+        rep.method = SuppressMethod::kContraction;
+        done = true;
+    } else if (options.flips) {
+        done = flip_down(m, v, region, options, rep);
+        if (done) rep.method = SuppressMethod::kFlips;
+        else if (rep.flips > 0) rollback(m, region, original);
+    }
+    if (!done) {
+        rep.result = SuppressResult::kNoRetriangulation;
+        return false;
+    }
+    rep.result = SuppressResult::kSuppressed;
+    for (TetId t : region)
+        if (live(m, t)) rep.created.push_back(t);
+    return true;
+}
+
+std::size_t suppress_vertices(TetMesh& m, std::vector<VertexId>& steiner, const mesh::EdgeProtect& protect,
+                              SuppressStats* stats, const SuppressOptions& options) {
+    SuppressStats local;
+    SuppressStats& st = stats ? *stats : local;
+    std::size_t total = 0;
+    std::vector<TetId> start = mesh::incident_tets(m);
+    bool progress = true;
+    while (progress && !steiner.empty()) {
+        progress = false;
+        ++st.passes;
+        st.kept_hull = st.kept_on_constraint = st.kept_protected = st.kept_no_retriangulation = 0;
+        std::vector<VertexId> kept;
+        for (VertexId v : steiner) {
+            if (v >= start.size()) continue;  // not a vertex of the mesh
+            TetId t = start[v];
+            if (t == mesh::kNoTet) continue;  // in no tetrahedron: not in the mesh
+            if (!live(m, t) || mesh::vertex_index(m, t, v) < 0) {
+                // An earlier suppression reused this slot: refresh every entry.
+                start = mesh::incident_tets(m);
+                t = start[v];
+                if (t == mesh::kNoTet) continue;
+            }
+            SuppressReport rep;
+            if (suppress_vertex(m, v, t, protect, &rep, options)) {
+                ++total;
+                progress = true;
+                (rep.method == SuppressMethod::kContraction ? st.by_contraction : st.by_flips) += 1;
+                start[v] = mesh::kNoTet;
+                // The ball's link vertices now start in the new tetrahedra.
+                for (TetId k : rep.created)
+                    for (int i = 0; i < 4; ++i)
+                        if (m.vertex(k, i) != kGhostVertex) start[m.vertex(k, i)] = k;
+                continue;
+            }
+            kept.push_back(v);
+            switch (rep.result) {
+                case SuppressResult::kHullVertex: ++st.kept_hull; break;
+                case SuppressResult::kOnConstraint: ++st.kept_on_constraint; break;
+                case SuppressResult::kProtectedEdge: ++st.kept_protected; break;
+                default: ++st.kept_no_retriangulation; break;
+            }
+            // A refused attempt may have moved the ball's slots (flips
+            // undone, rollback): refresh the starts of the region.
+            if (rep.flips > 0) start = mesh::incident_tets(m);
+        }
+        steiner.swap(kept);
+    }
+    st.suppressed += total;
+    return total;
+}
+
+}  // namespace cbr::recover
