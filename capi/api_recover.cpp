@@ -71,9 +71,11 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
             throw ApiError{CBR_ERR_RECOVERY_FAILED,
                            "could not recover " + name_triangles(result.unrecovered, mesh->index_base) + " of " +
                                std::to_string(count) + " (" + std::to_string(state.stats.missing_faces) +
-                               " missing after Delaunay; only faces present after Delaunay are recovered "
-                               "in this version)"};
+                               " missing after Delaunay): " + result.why};
         }
+        // Steiner points follow the caller's points in both numberings.
+        mesh->delaunay.adopt_added_vertices();
+        state.steiner = result.steiner;
         state.regions = cbr::recover::classify_regions(mesh->delaunay.mesh(), state.faces);
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;

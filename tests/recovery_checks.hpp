@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "geom/point_in_triangle.hpp"
 #include "geom/predicates.hpp"
 
 namespace cbr::test {
@@ -39,20 +40,6 @@ inline long double six_volume(const double* a, const double* b, const double* c,
         w[k] = static_cast<long double>(d[k]) - a[k];
     }
     return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
-// p in the closed triangle abc (exact): coplanar, and on the inner side of
-// the three edge planes through a point d off the plane.
-inline bool on_triangle(const double* p, const double* a, const double* b, const double* c) {
-    if (cbr::geom::orient3d(a, b, c, p) != 0) return false;
-    double d[3];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    for (int k = 0; k < 3; ++k) d[k] = a[k] + n[k];
-    const int side = cbr::geom::orient3d(a, b, c, d);
-    if (side == 0) return false;  // cannot happen for a valid (non-degenerate) triangle
-    return cbr::geom::orient3d(a, b, d, p) * side >= 0 && cbr::geom::orient3d(b, c, d, p) * side >= 0 &&
-           cbr::geom::orient3d(c, a, d, p) * side >= 0;
 }
 
 // Six times the signed volume the triangles enclose (divergence theorem).
@@ -132,7 +119,7 @@ inline void check_recovered(cbr_mesh* m, const std::vector<double>& xyz, const s
     std::size_t on_surface = 0;
     for (std::int64_t sp : steiner)
         for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
-            on_surface += on_triangle(P(sp), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
+            on_surface += cbr::geom::point_in_triangle(P(sp), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
     CHECK(on_surface == 0);
     // Volume of the bounded regions = volume of the domain.
     const long double enclosed = expected_volume > 0 ? expected_volume : enclosed_volume(xyz, tris);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "capi_test_util.hpp"
+#include "hard_cases.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -102,21 +103,31 @@ TEST_CASE("recovering a surface whose faces are all present, and reading the reg
     CHECK(contains(h.error(), "recovered already"));
 }
 
-TEST_CASE("a face that cannot be recovered yet is named, and the mesh is unchanged") {
-    const cbr::test::Polyhedron prism = cbr::test::schonhardt_prism();
-    const std::vector<double>& xyz = prism.xyz;
-    std::vector<std::int64_t> tris = prism.tris;
+TEST_CASE("a face that cannot be recovered is named, and the mesh is unchanged") {
+    // Chazelle's polyhedron (two families of grooves that nearly touch)
+    // defeats point splitting today; when it stops doing so, pick another
+    // failing input for this test (the failure path must stay tested).
+    const cbr::test::Polyhedron p = cbr::test::chazelle_polyhedron();
+    std::vector<std::int64_t> tris = p.tris;
     for (auto& v : tris) ++v;  // 1-based
     Handle h;
     REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_INDEX_BASE, 1) == CBR_OK);
-    REQUIRE(cbr_mesh_insert_points(h.m, 6, xyz.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_insert_points(h.m, static_cast<std::int64_t>(p.xyz.size() / 3), p.xyz.data()) == CBR_OK);
     const auto before = tets_of(h.m);
-    CHECK(cbr_mesh_recover_faces(h.m, 8, tris.data(), nullptr) == CBR_ERR_RECOVERY_FAILED);
+    double points_before = 0;
+    REQUIRE(cbr_mesh_get_stat(h.m, CBR_STAT_TOTAL_VERTICES, &points_before) == CBR_OK);
+    CHECK(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(tris.size() / 3), tris.data(), nullptr) ==
+          CBR_ERR_RECOVERY_FAILED);
     CHECK(contains(h.error(), "could not recover triangle"));
     CHECK(tets_of(h.m) == before);  // bit for bit
+    CHECK(cbr_mesh_point_count(h.m) == static_cast<std::int64_t>(p.xyz.size() / 3));  // added points gone
     CHECK(cbr_mesh_steiner_count(h.m) == 0);
+    // The statistics of the attempt stay readable.
+    double conforming = -1;
+    REQUIRE(cbr_mesh_get_stat(h.m, CBR_STAT_CONFORMING_POINTS, &conforming) == CBR_OK);
+    CHECK(conforming > 0);
     // Still usable: more points can be inserted.
-    const double extra[3] = {0, 0, 0.5};
+    const double extra[3] = {1e3, 1e3, 1e3};
     CHECK(cbr_mesh_insert_points(h.m, 1, extra) == CBR_OK);
 }
 

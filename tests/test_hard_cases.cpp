@@ -8,9 +8,10 @@
 // a message naming triangles, the mesh unchanged). Either way a change of
 // outcome fails the test, so that it is noticed and the table updated.
 //
-// Only flips exist today. The cases that fail now are the ones that need
-// Steiner points: conforming recovery and point splitting (Du & Wang 2004,
-// sections 5.2-5.4), not implemented yet.
+// The Schönhardt prisms need a Steiner point (no tetrahedralization of
+// their vertices alone exists): recovered, they must keep at least one,
+// strictly off the surface. Chazelle's polyhedron still fails (see the
+// closing notes of issue 3): a clean failure is checked for it.
 #include <doctest/doctest.h>
 
 #include <cbr/cbr.h>
@@ -48,9 +49,9 @@ double slit_cube_volume() {
 
 const std::vector<HardCase>& hard_cases() {
     static const std::vector<HardCase> cases = {
-        {"schonhardt-prism", cbr::test::schonhardt_prism, 1, 0, true, false},
-        {"schonhardt-stack", cbr::test::schonhardt_stack, 3, 3 * schonhardt_volume(), false, false},
-        {"slit-cube", [] { return cbr::test::slit_cube(); }, 1, slit_cube_volume(), true, false},
+        {"schonhardt-prism", cbr::test::schonhardt_prism, 1, 0, true, true},
+        {"schonhardt-stack", cbr::test::schonhardt_stack, 3, 3 * schonhardt_volume(), false, true},
+        {"slit-cube", [] { return cbr::test::slit_cube(); }, 1, slit_cube_volume(), true, true},
         {"sphere-box", [] { return cbr::test::sphere_box(); }, 10, 18, true, true},
         {"two-cubes-sharing-face", cbr::test::two_cubes_sharing_face, 2, 2, false, true},
         {"cube-in-cube", cbr::test::cube_in_cube, 2, 27, true, true},
@@ -124,9 +125,10 @@ TEST_CASE("hard cases: recovery, as today") {
                 CHECK(bounded.size() == static_cast<std::size_t>(c.bounded_regions));
                 if (!bounded.empty()) CHECK(*bounded.rbegin() == c.bounded_regions);
             }
+            if (name.rfind("schonhardt", 0) == 0) CHECK(cbr_mesh_steiner_count(m) >= 1);
         } else {
-            // Needs Steiner points (not implemented yet): a clean failure
-            // that names triangles and changes nothing.
+            // A clean failure that names triangles and changes nothing.
+            MESSAGE(std::string(cbr_mesh_last_error(m)));
             CHECK(status == CBR_ERR_RECOVERY_FAILED);
             CHECK(std::string(cbr_mesh_last_error(m)).find("could not recover triangle") != std::string::npos);
             CHECK(cbr_mesh_tet_count(m) == delaunay_tets);

@@ -10,6 +10,8 @@
 #include "recover/constraint_faces.hpp"
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
+#include "geom/point_in_triangle.hpp"
+#include "mesh/mesh_check.hpp"
 #include "test_util.hpp"
 
 using cbr::mesh::TetId;
@@ -137,7 +139,7 @@ TEST_CASE("region numbers follow the input, not the storage") {
     CHECK(cbr::recover::classify_regions(m, faces).of_tet == regions.of_tet);
 }
 
-TEST_CASE("missing faces are reported, never hidden: the Schonhardt prism") {
+TEST_CASE("the Schonhardt prism: flips are not enough; splitting leaves a Steiner point inside") {
     const cbr::test::Polyhedron prism = cbr::test::schonhardt_prism();
     cbr::delaunay::Delaunay d;
     REQUIRE(d.insert_points(prism.xyz.data(), 6).ok);
@@ -150,22 +152,37 @@ TEST_CASE("missing faces are reported, never hidden: the Schonhardt prism") {
     const ConstraintFaces faces(tris, {});
     cbr::recover::RecoveryStats stats;
     const auto result = cbr::recover::recover_faces(d.mesh_for_update(), faces, stats);
-    CHECK_FALSE(result.ok);
-    CHECK(stats.missing_faces > 0);
+    REQUIRE(result.ok);
+    CHECK(result.unrecovered.empty());
+    CHECK(result.invalid.empty());
     // Flips recover some faces, never all: the prism needs a Steiner point.
-    CHECK(!result.unrecovered.empty());
-    CHECK(result.unrecovered.size() == stats.missing_faces - stats.recovered_by_flips);
-    // Each reported triangle really is absent, each other one present.
-    const std::set<std::size_t> missing(result.unrecovered.begin(), result.unrecovered.end());
+    CHECK(stats.missing_faces > stats.recovered_by_flips);
+    CHECK(stats.conforming_points > 0);
+    CHECK(stats.steiner_generated >= stats.steiner_remaining);
+    REQUIRE(stats.steiner_remaining >= 1);
+    // Steiner points follow the input points, and every vertex is used.
     const TetMesh& m = d.mesh();
+    REQUIRE(result.steiner.size() == stats.steiner_remaining);
+    CHECK(m.vertex_count() == 6 + result.steiner.size());
+    for (std::size_t k = 0; k < result.steiner.size(); ++k) CHECK(result.steiner[k] == 6 + k);
+    std::set<VertexId> used;
     std::set<std::size_t> present;
-    for (TetId t = 0; t < m.slot_count(); ++t)
-        for (int f = 0; f < 4; ++f)
-            if (!m.is_free(t)) {
-                const VertexId* v = m.vertices(t);
-                const std::size_t i = faces.find(v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][1]],
-                                                 v[cbr::mesh::kFaceVertices[f][2]]);
-                if (i != ConstraintFaces::npos) present.insert(i);
-            }
-    for (std::size_t i = 0; i < faces.size(); ++i) CHECK((missing.count(i) == 1) != (present.count(i) == 1));
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        const VertexId* v = m.vertices(t);
+        for (int i = 0; i < 4; ++i) used.insert(v[i]);
+        for (int f = 0; f < 4; ++f) {
+            const std::size_t i = faces.find(v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][1]],
+                                             v[cbr::mesh::kFaceVertices[f][2]]);
+            if (i != ConstraintFaces::npos) present.insert(i);
+        }
+    }
+    CHECK(used.size() == m.vertex_count() + 1);  // the ghost vertex too
+    CHECK(present.size() == faces.size());
+    // Strictly off every input triangle, and inside the prism (a Steiner
+    // point outside would not help the prism).
+    for (VertexId s : result.steiner)
+        for (const Triangle& t : tris)
+            CHECK_FALSE(cbr::geom::point_in_triangle(m.point(s), m.point(t[0]), m.point(t[1]), m.point(t[2])));
+    CHECK(cbr::mesh::check_mesh(m).ok());
 }

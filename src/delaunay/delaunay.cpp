@@ -144,7 +144,16 @@ InsertOutcome Delaunay::insert_batch(VertexId first, std::size_t end) {
     return outcome;
 }
 
+void Delaunay::adopt_added_vertices() {
+    const std::size_t n = mesh_.vertex_count();
+    for (std::size_t v = external_of_.size(); v < n; ++v) {
+        external_of_.push_back(static_cast<VertexId>(v));
+        internal_of_.push_back(static_cast<VertexId>(v));
+    }
+}
+
 void Delaunay::rebuild() {
+    discard_vertices_from(batch_ends_.empty() ? 0 : batch_ends_.back());
     mesh_.clear_tets();
     kernel_.set_hint(0);
     std::size_t first = 0;

@@ -50,6 +50,11 @@ public:
     // algorithm is deterministic, so replaying them gives bit-identical
     // arrays (same tetrahedra, same order).
     void rebuild();
+    // Points that a later step appended to the mesh (Steiner and field
+    // points, TetMesh::add_points) join both numberings with external id ==
+    // internal id, i.e. after the caller's points in the order they were
+    // added. rebuild() drops them again (back to the last batch).
+    void adopt_added_vertices();
     mesh::VertexId external_id(mesh::VertexId internal) const { return external_of_[internal]; }
     mesh::VertexId internal_id(mesh::VertexId external) const { return internal_of_[external]; }
     const geom::PredicateCounters& counters() const { return counters_; }

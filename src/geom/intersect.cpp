@@ -4,33 +4,11 @@
 
 #include <cassert>
 
+#include "geom/orient2d.hpp"
 #include "geom/predicates.hpp"
 
 namespace cbr::geom {
 namespace {
-
-// ---------------------------------------------------------------------------
-// 2D orientation on a coordinate plane.
-//
-// The projection keeps coordinates (u, v) of each point. With
-// a' = (a_u, a_v, 0) and so on, orient3d(a', b', c', (0, 0, 1)) is
-// det[[b'-a'], [c'-a'], [-a_u, -a_v, 1]] = (b-a)_u (c-a)_v - (b-a)_v (c-a)_u,
-// the 2D orientation of the projected points (counter-clockwise positive).
-// Only copies of input coordinates and the constants 0 and 1 are involved,
-// so the result is as exact as orient3d.
-// ---------------------------------------------------------------------------
-struct Projection {
-    int u;
-    int v;
-};
-
-int orient2d(Projection pr, const double* a, const double* b, const double* c) {
-    const double pa[3] = {a[pr.u], a[pr.v], 0.0};
-    const double pb[3] = {b[pr.u], b[pr.v], 0.0};
-    const double pc[3] = {c[pr.u], c[pr.v], 0.0};
-    const double up[3] = {0.0, 0.0, 1.0};
-    return orient3d(pa, pb, pc, up);
-}
 
 // A plane given by a non-degenerate triangle, seen through a projection in
 // which that triangle stays non-degenerate (some coordinate of its normal is

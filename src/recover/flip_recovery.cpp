@@ -6,6 +6,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/flips.hpp"
+#include "recover/segment_walk.hpp"
 
 namespace cbr::recover {
 namespace {
@@ -34,14 +35,6 @@ std::uint64_t edge_key(VertexId a, VertexId b) {
     if (a > b) std::swap(a, b);
     return (std::uint64_t{a} << 32) | b;
 }
-
-// What the open segment u -> w meets first, leaving u.
-struct Crossing {
-    enum Kind { kNone, kFace, kEdge, kVertex } kind = kNone;
-    TetId tet = kNoTet;  // contains the face or edge
-    int face = -1;       // kFace: the face of `tet` crossed (opposite u)
-    VertexId x = 0, y = 0;  // kEdge: the edge crossed
-};
 
 class FlipRecovery {
 public:
@@ -77,44 +70,7 @@ private:
         return true;
     }
 
-    // The tetrahedron of u's ball whose cone at u holds w, and what the
-    // segment crosses there: the opposite face, one of its edges, or a
-    // vertex (when the segment runs through it).
-    Crossing first_crossing(VertexId u, VertexId w) {
-        Crossing c;
-        if (!mesh::ball(m_, u, incident_[u], ball_)) return c;
-        const double* pw = m_.point(w);
-        for (TetId t : ball_) {
-            if (m_.is_ghost(t)) continue;
-            const int ui = mesh::vertex_index(m_, t, u);
-            int zeros = 0, zero_face[2] = {-1, -1};
-            bool inside = true;
-            for (int g = 0; g < 4 && inside; ++g) {
-                if (g == ui) continue;
-                const VertexId* v = m_.vertices(t);
-                const int s = geom::orient3d(m_.point(v[kFaceVertices[g][0]]), m_.point(v[kFaceVertices[g][1]]),
-                                             m_.point(v[kFaceVertices[g][2]]), pw);
-                if (s < 0) inside = false;
-                if (s == 0 && zeros < 2) zero_face[zeros++] = g;
-            }
-            if (!inside) continue;
-            c.tet = t;
-            if (zeros == 0) {
-                c.kind = Crossing::kFace;
-                c.face = ui;
-            } else if (zeros == 1) {
-                // Along face zero_face[0]: through its edge opposite u.
-                c.kind = Crossing::kEdge;
-                int n = 0;
-                for (int h = 0; h < 4; ++h)
-                    if (h != ui && h != zero_face[0]) (n++ == 0 ? c.x : c.y) = m_.vertex(t, h);
-            } else {
-                c.kind = Crossing::kVertex;
-            }
-            return c;
-        }
-        return c;
-    }
+    Crossing first_crossing(VertexId u, VertexId w) { return recover::first_crossing(m_, u, incident_[u], w, ball_); }
 
     bool remove_crossing(const Crossing& c) {
         created_.clear();

@@ -18,6 +18,7 @@
 #include "recover/protected_insertion.hpp"
 
 #include <array>
+#include <cmath>
 #include <set>
 #include <unordered_set>
 
@@ -37,6 +38,11 @@ using mesh::VertexId;
 namespace {
 
 enum class Pass { kStable, kChanged, kStartLost };
+
+// Sine of the angle between a cone's face and its apex below which the
+// cone counts as flat (nearly_flat): far above rounding (1e-16), far below
+// any shape a mesh should keep.
+constexpr double kFlatCone = 1e-12;
 
 class Cavity {
 public:
@@ -63,6 +69,8 @@ private:
     bool in(TetId t) const { return in_.count(t) != 0; }
     bool is_protected(TetId t, int f) const;
     bool can_join(TetId n) const;
+    bool can_take_in(TetId t, int f, TetId n) const;
+    bool nearly_flat(TetId t, int f) const;
     bool in_conflict(TetId t) const;
     int face_sign(TetId t, int f) const;
     std::vector<Face> boundary() const;
@@ -213,9 +221,14 @@ Pass Cavity::correction_pass() {
         const TetId n = across(b.t, b.f);
         if (!in(b.t) || in(n)) continue;  // changed earlier in this sweep
         const int s = face_sign(b.t, b.f);
-        if (s > 0) continue;
+        if (s > 0 && !(nearly_flat(b.t, b.f) && can_take_in(b.t, b.f, n))) continue;
         changed = true;
-        if (s == 0 && !is_protected(b.t, b.f) && rejected_.count(n) == 0 && can_join(n)) {
+        if (s > 0) {
+            in_.insert(n);
+            ++added_;
+            continue;
+        }
+        if (s == 0 && can_take_in(b.t, b.f, n)) {
             in_.insert(n);
             ++added_;
             continue;
@@ -224,6 +237,34 @@ Pass Cavity::correction_pass() {
         remove(b.t);
     }
     return changed ? Pass::kChanged : Pass::kStable;
+}
+
+bool Cavity::can_take_in(TetId t, int f, TetId n) const {
+    return !is_protected(t, f) && rejected_.count(n) == 0 && can_join(n);
+}
+
+// A computed point (an intersection point, rounded) that should lie on the
+// plane of a face can land a rounding error off it: the cone would be a
+// sliver flat to within rounding, positive only by chance, which later
+// steps cannot work with (no point sees past it). Such a face is treated
+// like a coplanar one: the tetrahedron beyond joins the cavity if it may.
+bool Cavity::nearly_flat(TetId t, int f) const {
+    const VertexId* v = m_.vertices(t);
+    if (v[3] == kGhostVertex) return false;
+    const int* k = kFaceVertices[f];
+    const double* a = pt(v[k[0]]);
+    const double* b = pt(v[k[1]]);
+    const double* c = pt(v[k[2]]);
+    double x[3], y[3], z[3];
+    for (int i = 0; i < 3; ++i) {
+        x[i] = b[i] - a[i];
+        y[i] = c[i] - a[i];
+        z[i] = p_[i] - a[i];
+    }
+    const double n[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    const double det = n[0] * z[0] + n[1] * z[1] + n[2] * z[2];
+    const double scale = std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]));
+    return std::fabs(det) <= kFlatCone * scale;
 }
 
 // Keeps the face-connected component of start (through unprotected faces,

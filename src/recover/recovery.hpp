@@ -1,9 +1,8 @@
 // Constrained boundary recovery (Du & Wang 2004, §5): the driver. Steps, in
 // order: find the missing faces; flips (§5.1); per remaining face,
 // conforming recovery then edge- and face-added-point splitting (§5.2-5.4);
-// Steiner suppression and repositioning (§6). The steps after the first
-// plug in here as they land; until then a missing face is reported, never
-// hidden.
+// Steiner suppression and repositioning (§6). A face that a step cannot
+// recover is reported, never hidden.
 #pragma once
 
 #include <cstddef>
@@ -28,11 +27,16 @@ struct RecoveryResult {
     bool ok = false;
     std::vector<std::size_t> unrecovered;  // input triangles that are not faces
     std::vector<std::string> invalid;      // whole-mesh check failures (a bug if not empty)
+    std::string why;                       // when !ok: the step that gave up, and why
+    // Steiner points left in the mesh, in increasing id order; they are the
+    // vertices after the input ones (ids input_count, input_count + 1, ...).
+    std::vector<mesh::VertexId> steiner;
 };
 
 // Recovers every triangle of `faces` as a face of m, marking them as
-// constraint faces. On failure m may have been modified: the caller
-// restores it.
+// constraint faces. Steiner points are appended to m's vertices; ids below
+// the vertex count on entry never change. On failure m may have been
+// modified: the caller restores it.
 RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats);
 
 }  // namespace cbr::recover

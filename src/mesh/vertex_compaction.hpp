@@ -1,0 +1,19 @@
+// Dropping vertices that no tetrahedron uses any more (an added point once
+// it is split off the surface, a suppressed Steiner point), so that every
+// returned point is a vertex of the mesh.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::mesh {
+
+// Renumbers the vertices with ids >= `first` that some live tetrahedron
+// uses to first, first + 1, ... (keeping their order) and drops the
+// others. Vertices below `first` keep their ids (used or not). Ids in
+// `keep_in_step` are mapped too (and removed if dropped).
+void compact_vertices_from(TetMesh& m, std::size_t first, std::vector<VertexId>& keep_in_step);
+
+}  // namespace cbr::mesh

@@ -1,0 +1,313 @@
+#include "recover/conforming.hpp"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+#include "geom/intersect.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "recover/protected_insertion.hpp"
+#include "recover/segment_walk.hpp"
+
+namespace cbr::recover {
+
+using mesh::kFaceVertices;
+using mesh::kGhostVertex;
+using mesh::kNoTet;
+using mesh::TetId;
+using mesh::VertexId;
+
+namespace {
+
+// Points added on one edge, or in one face, before recovery gives up: each
+// insertion removes one crossing, so this only stops a bug from running
+// forever.
+constexpr std::size_t kMaxInsertionsPerConstraint = 100000;
+
+double signed_volume(const double* a, const double* b, const double* c, const double* d) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+           u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+// Where segment pq meets the plane of abc (rounded; the caller has checked
+// exactly that it does, in the open segment).
+void segment_plane_point(const double* p, const double* q, const double* a, const double* b, const double* c,
+                         double out[3]) {
+    const double vp = signed_volume(a, b, c, p), vq = signed_volume(a, b, c, q);
+    double s = vp / (vp - vq);
+    if (!(s > 0.0)) s = 0.5;  // only rounding can do this: stay on the segment
+    if (s >= 1.0) s = 0.5;
+    for (int k = 0; k < 3; ++k) out[k] = p[k] + s * (q[k] - p[k]);
+}
+
+// The point of segment pq nearest to line xy (the segments cross, so it is
+// their common point up to rounding).
+void segment_line_point(const double* p, const double* q, const double* x, const double* y, double out[3]) {
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; ++k) {
+        d1[k] = q[k] - p[k];
+        d2[k] = y[k] - x[k];
+        r[k] = p[k] - x[k];
+    }
+    const auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+    const double a = dot(d1, d1), e = dot(d2, d2), b = dot(d1, d2), c = dot(d1, r), f = dot(d2, r);
+    const double denom = a * e - b * b;
+    double s = denom > 0 ? (b * f - c * e) / denom : 0.5;
+    if (!(s > 0.0) || s >= 1.0) s = 0.5;
+    for (int k = 0; k < 3; ++k) out[k] = p[k] + s * d1[k];
+}
+
+bool contains_closed(const mesh::TetMesh& m, TetId t, const double* p) {
+    const VertexId* v = m.vertices(t);
+    for (int f = 0; f < 4; ++f) {
+        const int* k = kFaceVertices[f];
+        if (geom::orient3d(m.point(v[k[0]]), m.point(v[k[1]]), m.point(v[k[2]]), p) < 0) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+ConformingRecovery::ConformingRecovery(mesh::TetMesh& m, SurfacePoints& points)
+    : m_(m), points_(points), incident_(mesh::incident_tets(m)) {}
+
+bool ConformingRecovery::edge_exists(VertexId a, VertexId b) const {
+    return mesh::find_edge_tet(m_, a, incident_[a], b) != kNoTet;
+}
+
+void ConformingRecovery::note_created(const std::vector<TetId>& created) {
+    for (TetId t : created)
+        for (int i = 0; i < 4; ++i) {
+            const VertexId v = m_.vertex(t, i);
+            if (v == kGhostVertex) continue;
+            if (v >= incident_.size()) incident_.resize(std::size_t{v} + 1, kNoTet);
+            incident_[v] = t;
+        }
+}
+
+VertexId ConformingRecovery::insert(const double* xyz, std::vector<TetId> cavity) {
+    TetId start = kNoTet;
+    for (TetId t : cavity)
+        if (!m_.is_ghost(t) && contains_closed(m_, t, xyz)) {
+            start = t;
+            break;
+        }
+    // Rounding can put the point just outside the crossing it was computed
+    // for: then the cavity takes in the neighbour that holds it.
+    for (std::size_t i = 0, n = cavity.size(); i < n && start == kNoTet; ++i)
+        for (int f = 0; f < 4; ++f) {
+            const TetId t = mesh::facet_tet(m_.neighbor(cavity[i], f));
+            if (m_.is_ghost(t) || m_.is_constrained(cavity[i], f) ||
+                std::find(cavity.begin(), cavity.end(), t) != cavity.end() || !contains_closed(m_, t, xyz))
+                continue;
+            cavity.push_back(t);
+            start = t;
+            break;
+        }
+    // On the hull (coplanar hull faces whose diagonal is missing) the point
+    // can fall outside every tetrahedron: nudge it towards the inside of
+    // the first finite one, by the least amount that puts it in. The point
+    // is temporary (splitting removes it), so this costs nothing but its
+    // distance from the surface, a few ulps.
+    double nudged[3] = {xyz[0], xyz[1], xyz[2]};
+    for (TetId t : cavity) {
+        if (start != kNoTet || m_.is_ghost(t)) continue;
+        double c[3] = {0, 0, 0};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) c[k] += 0.25 * m_.point(m_.vertex(t, i))[k];
+        for (double f = 1.0 / 1024 / 1024 / 1024 / 1024; f < 0.5 && start == kNoTet; f *= 8) {
+            for (int k = 0; k < 3; ++k) nudged[k] = xyz[k] + f * (c[k] - xyz[k]);
+            if (contains_closed(m_, t, nudged)) start = t;
+        }
+    }
+    if (start != kNoTet) xyz = nudged;
+    if (start == kNoTet) {
+        why_ = "a rounded intersection point fell outside the tetrahedra it was meant to split";
+        return kGhostVertex;
+    }
+    const VertexId p = m_.add_points(xyz, 1);
+    const BlockedFace subface = [this](TetId t, int f) {
+        const VertexId* v = m_.vertices(t);
+        return points_.is_subface(v[kFaceVertices[f][0]], v[kFaceVertices[f][1]], v[kFaceVertices[f][2]]);
+    };
+    const ProtectedInsertResult r = insert_protected_in_cavity(m_, p, start, cavity, subface);
+    if (!r.ok) {
+        m_.truncate_vertices(p);
+        why_ = "protected insertion refused an intersection point: " + r.why;
+        return kGhostVertex;
+    }
+    note_created(r.created);
+    return p;
+}
+
+bool ConformingRecovery::recover_face(std::size_t face) {
+    const Triangle& t = points_.faces().triangle(face);
+    for (int k = 0; k < 3; ++k)
+        if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
+    return recover_interior(face) && disk_is_complete(face);
+}
+
+// §5.2 for a missing edge ab: walk from a towards b; where the segment
+// leaves the ball of the current chain end q, put a point on what it
+// crosses (a face, or an edge when it runs through one) and continue from
+// there. Each point becomes the next link of the chain a = q0, q1, ..., b.
+bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
+    if (!points_.chain(a, b).empty()) return true;
+    std::vector<VertexId> chain{a};
+    VertexId q = a;
+    for (std::size_t step = 0; step < kMaxInsertionsPerConstraint; ++step) {
+        if (edge_exists(q, b)) {
+            chain.push_back(b);
+            points_.set_chain(a, b, std::move(chain));
+            return true;
+        }
+        const Crossing c = first_crossing(m_, q, incident_[q], b, scratch_);
+        double xyz[3];
+        std::vector<TetId> cavity;
+        switch (c.kind) {
+            case Crossing::kFace: {
+                const VertexId* v = m_.vertices(c.tet);
+                const int* k = kFaceVertices[c.face];
+                segment_plane_point(m_.point(q), m_.point(b), m_.point(v[k[0]]), m_.point(v[k[1]]),
+                                    m_.point(v[k[2]]), xyz);
+                cavity = {c.tet, mesh::facet_tet(m_.neighbor(c.tet, c.face))};
+                break;
+            }
+            case Crossing::kEdge: {
+                segment_line_point(m_.point(q), m_.point(b), m_.point(c.x), m_.point(c.y), xyz);
+                mesh::Shell s;
+                if (!mesh::shell(m_, c.x, c.y, c.tet, s)) return fail("edge walk: no shell");
+                cavity = s.tets;
+                break;
+            }
+            case Crossing::kVertex:
+                return fail("an input edge runs exactly through another vertex");
+            default: return fail("edge walk found no tetrahedron towards the other end");
+        }
+        const VertexId p = insert(xyz, cavity);
+        if (p == kGhostVertex) return false;
+        points_.add_edge_point(p, a, b);
+        if (!edge_exists(q, p)) return fail("an added point is not joined to the chain it extends");
+        chain.push_back(p);
+        q = p;
+    }
+    return fail("too many points on one edge");
+}
+
+// §5.2 for the interior of a face whose edges are chains: put a point where
+// a mesh edge between two vertices that do not belong to the face crosses
+// it, until none does. If one does, one does in the ball of a point of the
+// face (follow the cut of the face by the mesh from that crossing to the
+// face's boundary: the last crossing before a point of the face shares a
+// mesh face with it), so only those balls are searched.
+bool ConformingRecovery::recover_interior(std::size_t face) {
+    const Triangle& tri = points_.faces().triangle(face);
+    // Copies: insertions grow the coordinate array.
+    double A[3], B[3], C[3];
+    std::copy_n(m_.point(tri[0]), 3, A);
+    std::copy_n(m_.point(tri[1]), 3, B);
+    std::copy_n(m_.point(tri[2]), 3, C);
+    std::vector<VertexId> work;
+    for (int k = 0; k < 3; ++k)
+        for (VertexId v : points_.chain(tri[k], tri[(k + 1) % 3])) work.push_back(v);
+    std::vector<TetId> ball;
+    std::size_t inserted = 0;
+    while (!work.empty()) {
+        const VertexId v = work.back();
+        work.pop_back();
+        if (!mesh::ball(m_, v, incident_[v], ball)) return fail("a point of the face lost its ball");
+        bool found = false;
+        VertexId u = 0, w = 0;
+        TetId where = kNoTet;
+        for (TetId t : ball) {
+            if (m_.is_ghost(t)) continue;
+            const VertexId* tv = m_.vertices(t);
+            for (int i = 0; i < 4 && !found; ++i)
+                for (int j = i + 1; j < 4 && !found; ++j) {
+                    if (tv[i] == v || tv[j] == v) continue;
+                    if (points_.belongs_to(tv[i], face) || points_.belongs_to(tv[j], face)) continue;
+                    if (!geom::segment_crosses_triangle_interior(m_.point(tv[i]), m_.point(tv[j]), A, B, C)) continue;
+                    found = true;
+                    u = tv[i];
+                    w = tv[j];
+                    where = t;
+                }
+            if (found) break;
+        }
+        if (!found) continue;
+        if (++inserted > kMaxInsertionsPerConstraint) return fail("too many points in one face");
+        double xyz[3];
+        segment_plane_point(m_.point(u), m_.point(w), A, B, C, xyz);
+        mesh::Shell s;
+        if (!mesh::shell(m_, u, w, where, s)) return fail("face cut: no shell");
+        const VertexId p = insert(xyz, s.tets);
+        if (p == kGhostVertex) return false;
+        points_.add_face_point(p, face);
+        work.push_back(v);
+        work.push_back(p);
+        // Balls the insertion changed.
+        std::vector<TetId> star;
+        if (mesh::ball(m_, p, incident_[p], star))
+            for (TetId t : star)
+                for (int i = 0; i < 4; ++i) {
+                    const VertexId x = m_.vertex(t, i);
+                    if (x != kGhostVertex && x != p && points_.belongs_to(x, face)) work.push_back(x);
+                }
+    }
+    return true;
+}
+
+// The face is a union of sub-faces: the mesh faces whose vertices all
+// belong to it form a disk bounded by its three chains (every chain link
+// on one of them, every other edge on two).
+bool ConformingRecovery::disk_is_complete(std::size_t face) {
+    const Triangle& tri = points_.faces().triangle(face);
+    std::set<VertexId> boundary_points;
+    std::set<std::pair<VertexId, VertexId>> boundary_links;
+    for (int k = 0; k < 3; ++k) {
+        const std::vector<VertexId> c = points_.chain(tri[k], tri[(k + 1) % 3]);
+        for (std::size_t i = 0; i + 1 < c.size(); ++i)
+            boundary_links.insert(std::minmax(c[i], c[i + 1]));
+        boundary_points.insert(c.begin(), c.end());
+    }
+    std::set<std::array<VertexId, 3>> subfaces;
+    std::set<VertexId> seen;
+    std::vector<VertexId> work(boundary_points.begin(), boundary_points.end());
+    std::vector<TetId> ball;
+    while (!work.empty()) {
+        const VertexId v = work.back();
+        work.pop_back();
+        if (!seen.insert(v).second) continue;
+        if (!mesh::ball(m_, v, incident_[v], ball)) return fail("a point of the face lost its ball");
+        for (TetId t : ball)
+            for (int f = 0; f < 4; ++f) {
+                std::array<VertexId, 3> fv{};
+                bool all = true;
+                for (int k = 0; k < 3; ++k) {
+                    fv[k] = m_.vertex(t, kFaceVertices[f][k]);
+                    all = all && fv[k] != kGhostVertex && points_.belongs_to(fv[k], face);
+                }
+                if (!all || (fv[0] != v && fv[1] != v && fv[2] != v)) continue;
+                std::sort(fv.begin(), fv.end());
+                if (!subfaces.insert(fv).second) continue;
+                for (VertexId x : fv) work.push_back(x);
+            }
+    }
+    std::map<std::pair<VertexId, VertexId>, int> uses;
+    for (const auto& f : subfaces)
+        for (int k = 0; k < 3; ++k) ++uses[std::minmax(f[k], f[(k + 1) % 3])];
+    for (const auto& [edge, n] : uses) {
+        const int expected = boundary_links.count(edge) ? 1 : 2;
+        if (n != expected) return fail("the sub-faces of a face do not form a disk");
+    }
+    for (const auto& link : boundary_links)
+        if (!uses.count(link)) return fail("a chain link bounds no sub-face");
+    return true;
+}
+
+}  // namespace cbr::recover

@@ -1,0 +1,58 @@
+// §5.2 Conforming face/edge recovery: points added on the missing edges and
+// in the interiors of the missing faces until every input triangle is a
+// union of mesh faces (sub-faces) whose vertices are its corners and the
+// added points (recorded in SurfacePoints). Splitting (point_splitting)
+// then moves every added point off the surface.
+//
+// Insertion kernel (§5.1 protected insertion with cavity correction): the
+// initial cavity of a point is the smallest one that removes the crossing
+// it is put on — the two tetrahedra of a crossed face, or the shell of a
+// crossed edge — rather than the Delaunay cavity of the paper: then every
+// insertion removes exactly one crossing and touches no other edge, so no
+// recovered part of any constraint (sub-edge, sub-face) is lost and the
+// process ends after as many insertions as there were crossings. The
+// cavity correction never crosses a constraint face or a sub-face.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/surface_points.hpp"
+
+namespace cbr::recover {
+
+class ConformingRecovery {
+public:
+    ConformingRecovery(mesh::TetMesh& m, SurfacePoints& points);
+
+    // Edges of input triangle `face` as chains of mesh edges, then its
+    // interior as sub-faces. False (with why()) when a step fails.
+    bool recover_face(std::size_t face);
+    const std::string& why() const { return why_; }
+    // Incident tetrahedron per vertex, kept up to date (all vertices).
+    std::vector<mesh::TetId>& incident() { return incident_; }
+
+private:
+    bool recover_edge(mesh::VertexId a, mesh::VertexId b);
+    bool recover_interior(std::size_t face);
+    bool disk_is_complete(std::size_t face);
+    // Inserts a point at xyz with `cavity` as initial cavity; returns its
+    // id or kGhostVertex (why_ set).
+    mesh::VertexId insert(const double* xyz, std::vector<mesh::TetId> cavity);
+    bool edge_exists(mesh::VertexId a, mesh::VertexId b) const;
+    void note_created(const std::vector<mesh::TetId>& created);
+    bool fail(std::string why) {
+        why_ = std::move(why);
+        return false;
+    }
+
+    mesh::TetMesh& m_;
+    SurfacePoints& points_;
+    std::vector<mesh::TetId> incident_;
+    std::vector<mesh::TetId> scratch_;
+    std::string why_;
+};
+
+}  // namespace cbr::recover

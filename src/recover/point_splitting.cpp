@@ -1,0 +1,351 @@
+#include "recover/point_splitting.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <numeric>
+
+#include "geom/orient2d.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "mesh/surgery.hpp"
+#include "recover/polygon_triangulation.hpp"
+
+namespace cbr::recover {
+
+using mesh::kFaceVertices;
+using mesh::kGhostVertex;
+using mesh::kNoTet;
+using mesh::TetId;
+using mesh::VertexId;
+
+namespace {
+
+// Halvings of the perturbation before a wedge is given up: 2^-40 of the
+// shortest edge is far below any placement that rounding can still tell
+// from e.
+constexpr int kMaxHalvings = 40;
+// Tetrahedra a split may take in beyond the ball (grow_past_flat_faces).
+constexpr std::size_t kMaxTakenIn = 64;
+// As in protected_insertion.cpp: flatter than this sine counts as flat.
+constexpr double kFlatCone = 1e-12;
+
+// A sub-face at e, seen from the wedge on one side: (e, x, y) with its
+// normal into the wedge, i.e. the directed polygon edge x -> y.
+struct FanFace {
+    int wedge;
+    std::size_t face;  // the input triangle it belongs to
+    VertexId x, y;
+};
+
+// One input triangle's fan around e: its polygon (outer vertices in the
+// order seen from `wedge`) and the polygon's triangulation.
+struct Fan {
+    std::size_t face;
+    int wedge = -1;       // the wedge the loop is seen from
+    int other = -1;       // the wedge on the other side
+    std::vector<VertexId> loop;
+    std::vector<std::array<int, 3>> triangles;
+};
+
+int find_root(std::vector<int>& parent, int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+// Same measure as the cavity correction's (protected_insertion.cpp): the
+// cone of face abc and apex p is flat to within rounding.
+bool flat_cone(const double* a, const double* b, const double* c, const double* p) {
+    double x[3], y[3], z[3];
+    for (int i = 0; i < 3; ++i) {
+        x[i] = b[i] - a[i];
+        y[i] = c[i] - a[i];
+        z[i] = p[i] - a[i];
+    }
+    const double n[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    const double det = n[0] * z[0] + n[1] * z[1] + n[2] * z[2];
+    const double scale =
+        std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]));
+    return std::fabs(det) <= kFlatCone * scale;
+}
+
+bool sees_all(const mesh::TetMesh& m, const std::vector<std::array<VertexId, 3>>& bounds, const double* s) {
+    for (const auto& b : bounds)
+        if (geom::orient3d(m.point(b[0]), m.point(b[1]), m.point(b[2]), s) <= 0) return false;
+    return true;
+}
+
+}  // namespace
+
+// Along the ray e + eps u (u = d / |d|), each boundary face of the wedge
+// is seen from an interval of eps: (lo_b, inf) for a face the ray moves
+// towards the front of (the fans, which e lies on up to rounding), [0,
+// hi_b) for one it approaches from the front (the far faces of the ball).
+// The intersection (lo, hi) is estimated in floating point and its middle
+// tried first — as far from every face as the ray allows —, then points
+// nearer to e; every candidate is tested exactly.
+bool PointSplitting::place_in_wedge(const double* pe, const double* d,
+                                    const std::vector<std::array<VertexId, 3>>& bounds, double shortest,
+                                    std::array<double, 3>& s) const {
+    const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(dl > 0)) return false;
+    const double u[3] = {d[0] / dl, d[1] / dl, d[2] / dl};
+    double lo = 0, hi = INFINITY;
+    for (const auto& b : bounds) {
+        const double* a = m_.point(b[0]);
+        const double* p = m_.point(b[1]);
+        const double* c = m_.point(b[2]);
+        const double x[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+        const double y[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+        const double at_e = n[0] * (pe[0] - a[0]) + n[1] * (pe[1] - a[1]) + n[2] * (pe[2] - a[2]);
+        const double slope = n[0] * u[0] + n[1] * u[1] + n[2] * u[2];
+        if (slope > 0) lo = std::max(lo, -at_e / slope);
+        else if (slope < 0) hi = std::min(hi, at_e / -slope);
+    }
+    const auto at = [&](double eps) {
+        for (int k = 0; k < 3; ++k) s[k] = pe[k] + eps * u[k];
+        return !(s[0] == pe[0] && s[1] == pe[1] && s[2] == pe[2]) && sees_all(m_, bounds, s.data());
+    };
+    if (lo < hi && std::isfinite(hi)) {
+        for (const double f : {0.5, 0.25, 0.75, 0.1, 0.9, 0.01, 0.99})
+            if (at(lo + f * (hi - lo))) return true;
+    }
+    double eps = 0.25 * shortest;
+    for (int h = 0; h <= kMaxHalvings; ++h, eps *= 0.5)
+        if (at(eps)) return true;
+    return false;
+}
+
+// The §5.1 cavity correction applied to a wedge: a far face that e lies on
+// up to rounding (a flat cone: e and the face's vertices are surface
+// points of nearly coplanar triangles) leaves no room for a Steiner point
+// behind it, so the tetrahedron beyond it joins the wedge — unless the face
+// is a constraint or a sub-face, or that tetrahedron touches the ball or
+// another wedge's additions.
+void PointSplitting::grow_past_flat_faces(const double* pe, const std::map<TetId, int>& ball,
+                                          std::vector<mesh::FacetRef>& links, std::set<TetId>& taken) const {
+    for (std::size_t i = 0; i < links.size() && taken.size() < kMaxTakenIn; ++i) {
+        const TetId t = mesh::facet_tet(links[i]);
+        const int f = mesh::facet_face(links[i]);
+        const int* k = kFaceVertices[f];
+        const VertexId a = m_.vertex(t, k[0]), b = m_.vertex(t, k[1]), c = m_.vertex(t, k[2]);
+        if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
+        if (!flat_cone(m_.point(a), m_.point(b), m_.point(c), pe)) continue;
+        const mesh::FacetRef across = m_.neighbor(t, f);
+        const TetId n = mesh::facet_tet(across);
+        if (m_.is_ghost(n) || ball.count(n) || taken.count(n)) continue;
+        bool touches = false;
+        for (int g = 0; g < 4; ++g) {
+            const TetId x = mesh::facet_tet(m_.neighbor(n, g));
+            if (g != mesh::facet_face(across) && (ball.count(x) || taken.count(x))) touches = true;
+        }
+        if (touches) continue;
+        taken.insert(n);
+        links.erase(links.begin() + static_cast<std::ptrdiff_t>(i));
+        for (int g = 0; g < 4; ++g)
+            if (g != mesh::facet_face(across)) links.push_back(mesh::make_facet(n, g));
+        i = static_cast<std::size_t>(-1);  // the new faces may be flat too: start over
+    }
+}
+
+bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
+    std::vector<TetId> ball;
+    if (!mesh::ball(m_, e, incident_[e], ball)) return fail("an added point lost its ball");
+    const int nb = static_cast<int>(ball.size());
+    std::map<TetId, int> index;
+    for (int i = 0; i < nb; ++i) index[ball[i]] = i;
+
+    // Wedges: the ball's tetrahedra joined across faces at e that are not
+    // sub-faces.
+    std::vector<int> parent(nb);
+    std::iota(parent.begin(), parent.end(), 0);
+    std::vector<FanFace> fan_faces;
+    for (int i = 0; i < nb; ++i) {
+        const TetId t = ball[i];
+        const int ei = mesh::vertex_index(m_, t, e);
+        for (int f = 0; f < 4; ++f) {
+            if (f == ei) continue;
+            const int* k = kFaceVertices[f];
+            VertexId v[3] = {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
+            while (v[0] != e) std::rotate(v, v + 1, v + 3);
+            const std::size_t g = points_.common_face(v[0], v[1], v[2]);
+            if (g == SurfacePoints::npos) {
+                parent[find_root(parent, i)] = find_root(parent, index.at(mesh::facet_tet(m_.neighbor(t, f))));
+            } else {
+                fan_faces.push_back({i, g, v[1], v[2]});
+            }
+        }
+    }
+    std::vector<int> wedge_of(nb);
+    std::map<int, int> wedge_id;
+    for (int i = 0; i < nb; ++i) {
+        const int r = find_root(parent, i);
+        if (!wedge_id.count(r)) {
+            const int id = static_cast<int>(wedge_id.size());
+            wedge_id[r] = id;
+        }
+        wedge_of[i] = wedge_id[r];
+    }
+    const int nw = static_cast<int>(wedge_id.size());
+    for (FanFace& ff : fan_faces) ff.wedge = wedge_of[ff.wedge];
+    if (nw < 2) return fail("the sub-faces around an added point do not cut its ball");
+
+    // The fans, their polygons and triangulations.
+    std::map<std::size_t, Fan> fans;
+    for (const FanFace& ff : fan_faces) {
+        Fan& fan = fans[ff.face];
+        fan.face = ff.face;
+        if (fan.wedge < 0) fan.wedge = ff.wedge;
+        else if (ff.wedge != fan.wedge) {
+            if (fan.other >= 0 && fan.other != ff.wedge) return fail("a fan borders more than two wedges");
+            fan.other = ff.wedge;
+        }
+    }
+    for (auto& [g, fan] : fans) {
+        if (fan.other < 0) return fail("a fan has the same wedge on both sides");
+        std::map<VertexId, VertexId> next, prev;
+        for (const FanFace& ff : fan_faces) {
+            if (ff.face != g || ff.wedge != fan.wedge) continue;
+            if (!next.emplace(ff.x, ff.y).second || !prev.emplace(ff.y, ff.x).second)
+                return fail("the sub-faces around an added point are not a fan");
+        }
+        VertexId first = next.begin()->first;
+        for (const auto& [x, y] : next)
+            if (!prev.count(x)) first = x;  // an open fan (edge point) starts where no link ends
+        for (VertexId v = first;;) {
+            fan.loop.push_back(v);
+            const auto it = next.find(v);
+            if (it == next.end() || it->second == first) break;
+            v = it->second;
+            if (fan.loop.size() > next.size() + 1) return fail("the fan around an added point does not close");
+        }
+        if (fan.loop.size() < next.size()) return fail("the fan around an added point has several pieces");
+        const Triangle& tri = points_.faces().triangle(g);
+        const double* A = m_.point(tri[0]);
+        const double* B = m_.point(tri[1]);
+        const double* C = m_.point(tri[2]);
+        const double n[3] = {(B[1] - A[1]) * (C[2] - A[2]) - (B[2] - A[2]) * (C[1] - A[1]),
+                             (B[2] - A[2]) * (C[0] - A[0]) - (B[0] - A[0]) * (C[2] - A[2]),
+                             (B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0])};
+        const geom::Projection pr = geom::projection_along(n);
+        int turn = 0;
+        for (const auto& [x, y] : next) {
+            const int s = geom::orient2d(pr, m_.point(e), m_.point(x), m_.point(y));
+            if (s == 0 || (turn != 0 && s != turn)) return fail("the fan around an added point folds over");
+            turn = s;
+        }
+        std::vector<const double*> coords;
+        for (VertexId v : fan.loop) coords.push_back(m_.point(v));
+        fan.triangles = triangulate_polygon(coords, pr, turn);
+        if (fan.triangles.empty()) return fail("the polygon around an added point has no triangulation");
+    }
+
+    // Each wedge: the cone from its Steiner point (or from the ghost vertex).
+    const double* pe = m_.point(e);
+    double shortest = INFINITY;
+    for (TetId t : ball)
+        for (int i = 0; i < 4; ++i) {
+            const VertexId v = m_.vertex(t, i);
+            if (v == e || v == kGhostVertex) continue;
+            const double* p = m_.point(v);
+            shortest = std::min(shortest, std::sqrt((p[0] - pe[0]) * (p[0] - pe[0]) + (p[1] - pe[1]) * (p[1] - pe[1]) +
+                                                    (p[2] - pe[2]) * (p[2] - pe[2])));
+        }
+    std::vector<std::array<VertexId, 4>> fresh;
+    std::vector<TetId> extra_old;
+    std::set<TetId> taken;  // tetrahedra outside the ball that a wedge took in
+    std::vector<std::array<double, 3>> apexes;  // coordinates of the Steiner points, in wedge order
+    for (int w = 0; w < nw; ++w) {
+        std::vector<mesh::FacetRef> links;  // the wedge's faces opposite e
+        int ghosts = 0, finite = 0;
+        for (int i = 0; i < nb; ++i) {
+            if (wedge_of[i] != w) continue;
+            const TetId t = ball[i];
+            (m_.is_ghost(t) ? ghosts : finite)++;
+            links.push_back(mesh::make_facet(t, mesh::vertex_index(m_, t, e)));
+        }
+        if (ghosts > 0 && finite > 0) return fail("an added point on the hull has a wedge partly outside it");
+        std::vector<std::array<VertexId, 3>> poly;  // polygon triangles, normals into the wedge
+        double d[3] = {0, 0, 0};
+        for (const auto& [g, fan] : fans) {
+            if (fan.wedge != w && fan.other != w) continue;
+            const bool reversed = fan.wedge != w;
+            for (const auto& tr : fan.triangles) {
+                const VertexId a = fan.loop[tr[0]], b = fan.loop[tr[1]], c = fan.loop[tr[2]];
+                poly.push_back(reversed ? std::array<VertexId, 3>{c, b, a} : std::array<VertexId, 3>{a, b, c});
+            }
+            double n[3] = {0, 0, 0};
+            for (const FanFace& ff : fan_faces) {
+                if (ff.face != g || ff.wedge != w) continue;
+                const double* x = m_.point(ff.x);
+                const double* y = m_.point(ff.y);
+                const double u[3] = {x[0] - pe[0], x[1] - pe[1], x[2] - pe[2]};
+                const double v[3] = {y[0] - pe[0], y[1] - pe[1], y[2] - pe[2]};
+                n[0] += u[1] * v[2] - u[2] * v[1];
+                n[1] += u[2] * v[0] - u[0] * v[2];
+                n[2] += u[0] * v[1] - u[1] * v[0];
+            }
+            const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!(len > 0)) return fail("a fan around an added point has no area");
+            for (int k = 0; k < 3; ++k) d[k] += n[k] / len;
+        }
+        if (ghosts > 0) {
+            for (const auto& b : poly) fresh.push_back({b[0], b[1], b[2], kGhostVertex});
+            continue;
+        }
+        grow_past_flat_faces(pe, index, links, taken);
+        std::vector<std::array<VertexId, 3>> bounds;  // boundary faces, normals into the wedge
+        std::vector<TetId> beyond;                     // ghosts across the far faces
+        for (const mesh::FacetRef r : links) {
+            const TetId t = mesh::facet_tet(r);
+            const int* k = kFaceVertices[mesh::facet_face(r)];
+            bounds.push_back({m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])});
+            const TetId across = mesh::facet_tet(m_.neighbor(t, mesh::facet_face(r)));
+            if (m_.is_ghost(across)) beyond.push_back(across);
+        }
+        const std::size_t far_faces = bounds.size();
+        bounds.insert(bounds.end(), poly.begin(), poly.end());
+        std::array<double, 3> s{};
+        if (!place_in_wedge(pe, d, bounds, shortest, s)) {
+            // A flat wedge between the fans and hull faces (an added point on
+            // a coplanar hull face whose other diagonal the Delaunay mesh
+            // has, nudged inside the hull): the wedge and the ghosts beyond
+            // it become the ghosts of the polygon triangles, which are then
+            // hull faces. replace_tets checks that the hull stays convex.
+            if (beyond.size() != far_faces)
+                return fail("no Steiner point position sees the whole wedge of an added point");
+            extra_old.insert(extra_old.end(), beyond.begin(), beyond.end());
+            for (const auto& b : poly) fresh.push_back({b[0], b[1], b[2], kGhostVertex});
+            continue;
+        }
+        const VertexId id = static_cast<VertexId>(m_.vertex_count() + apexes.size());
+        apexes.push_back(s);
+        for (const auto& b : bounds) fresh.push_back({b[0], b[1], b[2], id});
+    }
+
+    const std::size_t before = m_.vertex_count();
+    for (const auto& s : apexes) m_.add_points(s.data(), 1);
+    std::vector<TetId> created;
+    std::vector<TetId> old = ball;
+    old.insert(old.end(), extra_old.begin(), extra_old.end());
+    old.insert(old.end(), taken.begin(), taken.end());
+    const mesh::ReplaceResult r = mesh::replace_tets(m_, old, fresh, &created);
+    if (r != mesh::ReplaceResult::kDone) {
+        m_.truncate_vertices(before);
+        return fail(std::string("splitting an added point: ") + mesh::to_string(r));
+    }
+    if (incident_.size() < m_.vertex_count()) incident_.resize(m_.vertex_count(), kNoTet);
+    for (TetId t : created)
+        for (int i = 0; i < 4; ++i)
+            if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
+    incident_[e] = kNoTet;
+    if (points_.on_edge(e, nullptr, nullptr, nullptr)) points_.remove_from_chain(e);
+    points_.remove(e);
+    for (std::size_t v = before; v < m_.vertex_count(); ++v) steiner.push_back(static_cast<VertexId>(v));
+    return true;
+}
+
+}  // namespace cbr::recover

@@ -1,0 +1,25 @@
+// Triangulation of a planar polygon without new vertices: the polygon
+// P1 ... Pn that the cap and ball transformations (§5.1, Definitions 5.7
+// and 5.8) triangulate when an added point leaves the surface.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "geom/orient2d.hpp"
+
+namespace cbr::recover {
+
+// Triangulates the simple polygon `loop` (vertex coordinates, in order;
+// nearly planar) seen through projection `pr`, in which the loop turns
+// with sign `turn` (+1 counter-clockwise, -1 clockwise). Among the
+// triangulations whose triangles are all strictly of sign `turn`, contain
+// no other polygon vertex and whose diagonals cross no polygon edge (all
+// decided exactly), returns one that maximizes the smallest triangle
+// quality (dynamic programming over the polygon). Triangles are index
+// triples (i < j < k), which follow the loop's turn. Empty when there is
+// none (e.g. the projection folds the polygon).
+std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
+                                                    int turn);
+
+}  // namespace cbr::recover

@@ -1,0 +1,28 @@
+// Walking a segment through the mesh (recovery.md, "Exact primitives"):
+// what the open segment u -> w meets first when it leaves vertex u. The
+// workhorse of flip recovery (remove what the segment crosses) and of
+// conforming recovery (insert a point where it crosses).
+#pragma once
+
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::recover {
+
+struct Crossing {
+    enum Kind { kNone, kFace, kEdge, kVertex } kind = kNone;
+    mesh::TetId tet = mesh::kNoTet;  // the tetrahedron of u's ball the segment enters
+    int face = -1;                   // kFace: the face of `tet` crossed (opposite u)
+    mesh::VertexId x = 0, y = 0;     // kEdge: the edge crossed; kVertex: x is the vertex
+};
+
+// The finite tetrahedron of u's ball whose cone at u holds w, and what the
+// segment crosses there: the opposite face, one of its edges, or a vertex
+// (when the segment runs through it). `start` is a tetrahedron containing
+// u; `scratch` is reused storage. kNone when u's ball has no such
+// tetrahedron (w outside the hull seen from u).
+Crossing first_crossing(const mesh::TetMesh& m, mesh::VertexId u, mesh::TetId start, mesh::VertexId w,
+                        std::vector<mesh::TetId>& scratch);
+
+}  // namespace cbr::recover

@@ -1,0 +1,109 @@
+#include "recover/surface_points.hpp"
+
+#include <algorithm>
+
+namespace cbr::recover {
+
+using mesh::VertexId;
+
+SurfacePoints::SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_count)
+    : faces_(faces), corner_first_(vertex_count + 1, 0) {
+    for (std::size_t i = 0; i < faces_.size(); ++i)
+        for (VertexId v : faces_.triangle(i)) ++corner_first_[v + 1];
+    for (std::size_t v = 0; v < vertex_count; ++v) corner_first_[v + 1] += corner_first_[v];
+    corner_faces_.resize(corner_first_.back());
+    std::vector<std::uint32_t> fill(corner_first_.begin(), corner_first_.end() - 1);
+    for (std::size_t i = 0; i < faces_.size(); ++i) {
+        const Triangle& t = faces_.triangle(i);
+        for (int k = 0; k < 3; ++k) {
+            corner_faces_[fill[t[k]]++] = static_cast<std::uint32_t>(i);
+            edge_faces_[edge_key(t[k], t[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+}
+
+void SurfacePoints::add_edge_point(VertexId p, VertexId a, VertexId b) {
+    added_[p] = Added{a, b, npos};
+    order_.push_back(p);
+}
+
+void SurfacePoints::add_face_point(VertexId p, std::size_t face) {
+    added_[p] = Added{0, 0, face};
+    order_.push_back(p);
+}
+
+void SurfacePoints::remove(VertexId p) { added_.erase(p); }
+
+bool SurfacePoints::on_edge(VertexId v, VertexId* a, VertexId* b, std::size_t* face) const {
+    const Added& x = added_.at(v);
+    if (x.face != npos) {
+        if (face) *face = x.face;
+        return false;
+    }
+    if (a) *a = x.a;
+    if (b) *b = x.b;
+    return true;
+}
+
+void SurfacePoints::faces_of(VertexId v, std::vector<std::size_t>& out) const {
+    out.clear();
+    const auto it = added_.find(v);
+    if (it != added_.end()) {
+        if (it->second.face != npos) out.push_back(it->second.face);
+        else
+            for (std::uint32_t f : faces_of_edge(it->second.a, it->second.b)) out.push_back(f);
+        return;
+    }
+    if (v + 1 >= corner_first_.size()) return;
+    for (std::uint32_t k = corner_first_[v]; k < corner_first_[v + 1]; ++k) out.push_back(corner_faces_[k]);
+}
+
+bool SurfacePoints::belongs_to(VertexId v, std::size_t face) const {
+    const Triangle& t = faces_.triangle(face);
+    if (v == t[0] || v == t[1] || v == t[2]) return true;
+    const auto it = added_.find(v);
+    if (it == added_.end()) return false;
+    const Added& x = it->second;
+    if (x.face != npos) return x.face == face;
+    const auto corner = [&](VertexId c) { return c == t[0] || c == t[1] || c == t[2]; };
+    return corner(x.a) && corner(x.b);
+}
+
+std::size_t SurfacePoints::common_face(VertexId x, VertexId y, VertexId z) const {
+    if (x == mesh::kGhostVertex || y == mesh::kGhostVertex || z == mesh::kGhostVertex) return npos;
+    // Candidates from the vertex with the fewest triangles: an added point
+    // has one or a few, a corner its whole umbrella.
+    const VertexId pick = is_added(x) ? x : is_added(y) ? y : z;
+    std::vector<std::size_t> candidates;
+    faces_of(pick, candidates);
+    for (std::size_t f : candidates)
+        if (belongs_to(x, f) && belongs_to(y, f) && belongs_to(z, f)) return f;
+    return npos;
+}
+
+const std::vector<std::uint32_t>& SurfacePoints::faces_of_edge(VertexId a, VertexId b) const {
+    static const std::vector<std::uint32_t> kNone;
+    const auto it = edge_faces_.find(edge_key(a, b));
+    return it == edge_faces_.end() ? kNone : it->second;
+}
+
+std::vector<VertexId> SurfacePoints::chain(VertexId a, VertexId b) const {
+    const auto it = chains_.find(edge_key(a, b));
+    if (it == chains_.end()) return {};
+    std::vector<VertexId> c = it->second;
+    if (c.front() != a) std::reverse(c.begin(), c.end());
+    return c;
+}
+
+void SurfacePoints::set_chain(VertexId a, VertexId b, std::vector<VertexId> chain) {
+    if (chain.front() != std::min(a, b)) std::reverse(chain.begin(), chain.end());
+    chains_[edge_key(a, b)] = std::move(chain);
+}
+
+void SurfacePoints::remove_from_chain(VertexId p) {
+    const Added& x = added_.at(p);
+    auto& c = chains_.at(edge_key(x.a, x.b));
+    c.erase(std::find(c.begin(), c.end(), p));
+}
+
+}  // namespace cbr::recover

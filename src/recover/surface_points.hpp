@@ -1,0 +1,81 @@
+// The surface while recovery works on it (§5.2-5.4): the input triangles,
+// the points conforming recovery adds on their edges and interiors, and
+// which input triangles each surface point belongs to.
+//
+// An *added point* lies (approximately: it is a rounded intersection
+// point) on an input edge or in an input triangle and is temporary:
+// splitting turns it into Steiner points off the surface. A face's
+// *points* are its three corners, the added points on its edges and those
+// in its interior; a mesh face whose three vertices are points of one
+// input triangle is a *sub-face* of it (the conforming recovery
+// represents the triangle as a union of them).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/constraint_faces.hpp"
+
+namespace cbr::recover {
+
+class SurfacePoints {
+public:
+    static constexpr std::size_t npos = ConstraintFaces::npos;
+
+    SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_count);
+
+    // Records p as a point added on input edge ab (a, b corners of a face).
+    void add_edge_point(mesh::VertexId p, mesh::VertexId a, mesh::VertexId b);
+    // Records p as a point added in the interior of input triangle `face`.
+    void add_face_point(mesh::VertexId p, std::size_t face);
+    // p is no longer a surface point (it was split off the surface).
+    void remove(mesh::VertexId p);
+
+    bool is_added(mesh::VertexId v) const { return added_.count(v) != 0; }
+    // For an added point: true when it lies on an edge (then *a, *b are the
+    // edge's ends), false when inside a triangle (then *face is it).
+    bool on_edge(mesh::VertexId v, mesh::VertexId* a, mesh::VertexId* b, std::size_t* face) const;
+    // The input triangles v belongs to (as a corner, or as an added point).
+    void faces_of(mesh::VertexId v, std::vector<std::size_t>& out) const;
+    bool belongs_to(mesh::VertexId v, std::size_t face) const;
+    // An input triangle all of x, y, z belong to, or npos.
+    std::size_t common_face(mesh::VertexId x, mesh::VertexId y, mesh::VertexId z) const;
+    bool is_subface(mesh::VertexId x, mesh::VertexId y, mesh::VertexId z) const {
+        return common_face(x, y, z) != npos;
+    }
+    // Input triangles with edge ab.
+    const std::vector<std::uint32_t>& faces_of_edge(mesh::VertexId a, mesh::VertexId b) const;
+
+    // The chain of mesh edges that represents input edge ab once it is
+    // recovered in a conforming manner (a first, b last); empty if not yet.
+    std::vector<mesh::VertexId> chain(mesh::VertexId a, mesh::VertexId b) const;
+    void set_chain(mesh::VertexId a, mesh::VertexId b, std::vector<mesh::VertexId> chain);
+    // Removes added point p from the chain it belongs to.
+    void remove_from_chain(mesh::VertexId p);
+
+    // Added points in the order they were added (removed ones included).
+    const std::vector<mesh::VertexId>& added_in_order() const { return order_; }
+    const ConstraintFaces& faces() const { return faces_; }
+
+private:
+    static std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) {
+        if (a > b) std::swap(a, b);
+        return (std::uint64_t{a} << 32) | b;
+    }
+    struct Added {
+        mesh::VertexId a, b;  // edge points: the input edge
+        std::size_t face;     // face points: the triangle; npos for edge points
+    };
+
+    const ConstraintFaces& faces_;
+    std::vector<std::uint32_t> corner_first_, corner_faces_;  // vertex -> triangles (CSR)
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces_;
+    std::unordered_map<mesh::VertexId, Added> added_;
+    std::unordered_map<std::uint64_t, std::vector<mesh::VertexId>> chains_;  // stored from min id to max id
+    std::vector<mesh::VertexId> order_;
+};
+
+}  // namespace cbr::recover
