@@ -1,0 +1,1087 @@
+// Conforming recovery and added-point splitting (§5.2-5.4), step by step:
+// polygon triangulation (cap / ball transformations), vertex compaction,
+// ConformingRecovery + PointSplitting on small exact cases, the whole
+// recover_faces driver on Schonhardt-type inputs, and the nearly_flat rule
+// of protected insertion. Every check is exact where it can be (orient2d /
+// orient3d, check_mesh); the distance of a rounded point from the surface
+// is bounded relatively.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "delaunay/delaunay.hpp"
+#include "geom/orient2d.hpp"
+#include "geom/point_in_triangle.hpp"
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh/vertex_compaction.hpp"
+#include "recover/conforming.hpp"
+#include "recover/constraint_faces.hpp"
+#include "recover/flip_recovery.hpp"
+#include "recover/point_splitting.hpp"
+#include "recover/polygon_triangulation.hpp"
+#include "recover/protected_insertion.hpp"
+#include "recover/recovery.hpp"
+#include "recover/surface_points.hpp"
+#include "test_util.hpp"
+
+using namespace cbr::mesh;
+using cbr::geom::orient2d;
+using cbr::geom::Projection;
+using cbr::recover::ConformingRecovery;
+using cbr::recover::ConstraintFaces;
+using cbr::recover::PointSplitting;
+using cbr::recover::SurfacePoints;
+using cbr::recover::Triangle;
+using cbr::recover::triangulate_polygon;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------
+// Polygon triangulation helpers (2D, z = 0, projection {0, 1}).
+
+using P2 = std::array<double, 3>;
+
+std::vector<const double*> ptrs(const std::vector<P2>& pts) {
+    std::vector<const double*> out;
+    for (const P2& p : pts) out.push_back(p.data());
+    return out;
+}
+
+double shoelace(const std::vector<P2>& pts) {
+    double s = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const P2& a = pts[i];
+        const P2& b = pts[(i + 1) % pts.size()];
+        s += a[0] * b[1] - a[1] * b[0];
+    }
+    return s / 2;
+}
+
+double tri_area2d(const P2& a, const P2& b, const P2& c) {
+    return ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2;
+}
+
+// Open segments cross at one interior point (exact).
+bool cross2d(const double* p, const double* q, const double* r, const double* s) {
+    const Projection pr{0, 1};
+    return orient2d(pr, p, q, r) * orient2d(pr, p, q, s) < 0 && orient2d(pr, r, s, p) * orient2d(pr, r, s, q) < 0;
+}
+
+// Everything a triangulation of the simple polygon `pts` (turning with
+// `turn`) must satisfy: n - 2 triangles, indices i < j < k, each of sign
+// `turn` (exact), no other polygon vertex in a closed triangle, no
+// triangle side crossing a polygon edge, each polygon edge used once and
+// each diagonal twice, total area = polygon area.
+void check_triangulation(const std::vector<P2>& pts, int turn, const std::vector<std::array<int, 3>>& tris) {
+    const Projection pr{0, 1};
+    const int n = static_cast<int>(pts.size());
+    REQUIRE(tris.size() == static_cast<std::size_t>(n - 2));
+    double area = 0;
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& t : tris) {
+        REQUIRE(t[0] >= 0);
+        REQUIRE(t[2] < n);
+        CHECK(t[0] < t[1]);
+        CHECK(t[1] < t[2]);
+        const P2 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
+        CHECK(orient2d(pr, a.data(), b.data(), c.data()) == turn);
+        area += tri_area2d(a, b, c);
+        for (int x = 0; x < n; ++x) {
+            if (x == t[0] || x == t[1] || x == t[2]) continue;
+            const bool inside = turn * orient2d(pr, a.data(), b.data(), pts[x].data()) >= 0 &&
+                                turn * orient2d(pr, b.data(), c.data(), pts[x].data()) >= 0 &&
+                                turn * orient2d(pr, c.data(), a.data(), pts[x].data()) >= 0;
+            CHECK_MESSAGE(!inside, "vertex " << x << " inside triangle " << t[0] << " " << t[1] << " " << t[2]);
+        }
+        for (int k = 0; k < 3; ++k) {
+            const int i = t[k], j = t[(k + 1) % 3];
+            ++uses[std::minmax(i, j)];
+            for (int e = 0; e < n; ++e) {
+                const int f = (e + 1) % n;
+                if (e == i || e == j || f == i || f == j) continue;
+                CHECK_MESSAGE(!cross2d(pts[i].data(), pts[j].data(), pts[e].data(), pts[f].data()),
+                              "side " << i << "-" << j << " crosses polygon edge " << e << "-" << f);
+            }
+        }
+    }
+    for (const auto& [e, k] : uses) {
+        const bool boundary = e.second == e.first + 1 || (e.first == 0 && e.second == n - 1);
+        CHECK(k == (boundary ? 1 : 2));
+    }
+    const double poly = shoelace(pts);
+    CHECK(area == doctest::Approx(poly).epsilon(1e-12));
+}
+
+// ---------------------------------------------------------------------------
+// Small exact recovery cases.
+
+struct Case {
+    std::unique_ptr<cbr::delaunay::Delaunay> d = std::make_unique<cbr::delaunay::Delaunay>();
+    std::unique_ptr<ConstraintFaces> faces;
+    std::size_t input_count = 0;
+    TetMesh& m() { return d->mesh_for_update(); }
+};
+
+void build(Case& c, const std::vector<double>& xyz, const std::vector<std::int64_t>& tris) {
+    c.input_count = xyz.size() / 3;
+    REQUIRE(c.d->insert_points(xyz.data(), c.input_count).ok);
+    std::vector<Triangle> t;
+    for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+        t.push_back({c.d->internal_id(static_cast<VertexId>(tris[i])), c.d->internal_id(static_cast<VertexId>(tris[i + 1])),
+                     c.d->internal_id(static_cast<VertexId>(tris[i + 2]))});
+    c.faces = std::make_unique<ConstraintFaces>(std::move(t), std::vector<std::int32_t>{});
+}
+
+void require_valid(const TetMesh& m, const char* when) {
+    const CheckReport r = check_mesh(m);
+    REQUIRE_MESSAGE(r.ok(), when << ": " << (r.errors.empty() ? std::string() : r.errors[0]));
+}
+
+// check_mesh, except that exactly `unused` vertices (the added points split
+// off so far: they stay in the coordinate array until compaction) are in no
+// tetrahedron.
+void require_valid_but_unused(const TetMesh& m, std::size_t unused, const char* when) {
+    const CheckReport r = check_mesh(m);
+    INFO(when << ": " << (r.errors.empty() ? std::string() : r.errors[0]));
+    REQUIRE(r.error_count == unused);
+    for (const std::string& e : r.errors) REQUIRE(e.find("is in no tetrahedron") != std::string::npos);
+}
+
+double dist(const double* a, const double* b) {
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Distance of p from the line ab, and the parameter of its projection.
+double line_distance(const double* p, const double* a, const double* b, double* param) {
+    double d[3], r[3];
+    for (int k = 0; k < 3; ++k) {
+        d[k] = b[k] - a[k];
+        r[k] = p[k] - a[k];
+    }
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double s = (r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / dd;
+    *param = s;
+    double e = 0;
+    for (int k = 0; k < 3; ++k) e += (r[k] - s * d[k]) * (r[k] - s * d[k]);
+    return std::sqrt(e);
+}
+
+// Distance of p from the plane of abc and its barycentric coordinates.
+double plane_distance(const double* p, const double* a, const double* b, const double* c, double bary[3]) {
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+        w[k] = p[k] - a[k];
+    }
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    // Barycentric coordinates of the projection.
+    const double uu = dot(u, u), uv = dot(u, v), vv = dot(v, v), wu = dot(w, u), wv = dot(w, v);
+    const double den = uu * vv - uv * uv;
+    bary[1] = (vv * wu - uv * wv) / den;
+    bary[2] = (uu * wv - uv * wu) / den;
+    bary[0] = 1 - bary[1] - bary[2];
+    return std::fabs(dot(n, w)) / std::sqrt(nn);
+}
+
+bool used_by_a_tet(const TetMesh& m, VertexId v) {
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t) && vertex_index(m, t, v) >= 0) return true;
+    return false;
+}
+
+std::size_t added_now(const SurfacePoints& sp) {
+    std::size_t n = 0;
+    for (VertexId v : sp.added_in_order()) n += sp.is_added(v);
+    return n;
+}
+
+// v lies on (the closed) input triangle i (exact).
+bool on_some_input_triangle(const TetMesh& m, const ConstraintFaces& faces, VertexId v) {
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Triangle& t = faces.triangle(i);
+        if (cbr::geom::point_in_triangle(m.point(v), m.point(t[0]), m.point(t[1]), m.point(t[2]))) return true;
+    }
+    return false;
+}
+
+struct SplitStats {
+    std::size_t edge_points = 0, face_points = 0, steiner = 0;
+    std::size_t max_fans = 0;  // input triangles at one edge point
+};
+
+// Conforming recovery of every face of `missing`, with its checks, then
+// the splitting of every added point (edge points first) with its checks;
+// at the end every input triangle is a face.
+SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
+    TetMesh& m = c.m();
+    const ConstraintFaces& faces = *c.faces;
+    SplitStats st;
+    SurfacePoints sp(faces, m.vertex_count());
+    ConformingRecovery cr(m, sp);
+    for (std::size_t f : missing) {
+        INFO("conforming recovery of triangle " << f);
+        REQUIRE_MESSAGE(cr.recover_face(f), cr.why());
+        require_valid(m, "after recover_face");
+    }
+    // Every point added is recorded, and only those.
+    REQUIRE(sp.added_in_order().size() == m.vertex_count() - c.input_count);
+    {
+        std::set<VertexId> seen(sp.added_in_order().begin(), sp.added_in_order().end());
+        CHECK(seen.size() == sp.added_in_order().size());
+        for (VertexId v = static_cast<VertexId>(c.input_count); v < m.vertex_count(); ++v) {
+            CHECK(sp.is_added(v));
+            CHECK(seen.count(v) == 1);
+        }
+    }
+    const std::vector<TetId> inc = incident_tets(m);
+    // Chains: every edge of a missing face, a to b, consecutive vertices
+    // joined by mesh edges, inner ones points added on that edge; every edge
+    // point is on exactly one chain.
+    std::map<VertexId, int> on_chains;
+    std::set<std::pair<VertexId, VertexId>> edges_done;
+    for (std::size_t f : missing) {
+        const Triangle& t = faces.triangle(f);
+        for (int k = 0; k < 3; ++k) {
+            const VertexId a = t[k], b = t[(k + 1) % 3];
+            const std::vector<VertexId> ch = sp.chain(a, b);
+            INFO("edge " << a << "-" << b);
+            REQUIRE(ch.size() >= 2);
+            CHECK(ch.front() == a);
+            CHECK(ch.back() == b);
+            for (std::size_t i = 0; i + 1 < ch.size(); ++i)
+                CHECK_MESSAGE(find_edge_tet(m, ch[i], inc[ch[i]], ch[i + 1]) != kNoTet,
+                              "chain link " << ch[i] << "-" << ch[i + 1] << " is not a mesh edge");
+            if (!edges_done.insert(std::minmax(a, b)).second) continue;
+            for (std::size_t i = 1; i + 1 < ch.size(); ++i) {
+                REQUIRE(sp.is_added(ch[i]));
+                VertexId x = 0, y = 0;
+                REQUIRE(sp.on_edge(ch[i], &x, &y, nullptr));
+                CHECK(std::minmax(x, y) == std::minmax(a, b));
+                ++on_chains[ch[i]];
+            }
+        }
+    }
+    // Each added point is a rounded intersection point: within a few ulps
+    // (relative to its edge / face) of the edge or face it was added on, and
+    // inside it.
+    for (VertexId v : sp.added_in_order()) {
+        VertexId a = 0, b = 0;
+        std::size_t f = SurfacePoints::npos;
+        if (sp.on_edge(v, &a, &b, &f)) {
+            ++st.edge_points;
+            CHECK(on_chains[v] == 1);
+            double s = 0;
+            const double e = line_distance(m.point(v), m.point(a), m.point(b), &s);
+            CHECK(e <= 1e-13 * dist(m.point(a), m.point(b)));
+            CHECK(s > 0);
+            CHECK(s < 1);
+            st.max_fans = std::max(st.max_fans, sp.faces_of_edge(a, b).size());
+        } else {
+            ++st.face_points;
+            REQUIRE(f < faces.size());
+            const Triangle& t = faces.triangle(f);
+            double bary[3];
+            const double e = plane_distance(m.point(v), m.point(t[0]), m.point(t[1]), m.point(t[2]), bary);
+            const double size = std::max({dist(m.point(t[0]), m.point(t[1])), dist(m.point(t[1]), m.point(t[2])),
+                                          dist(m.point(t[2]), m.point(t[0]))});
+            CHECK(e <= 1e-13 * size);
+            for (double x : bary) CHECK(x > -1e-13);
+        }
+    }
+
+    // Splitting, edge points first.
+    PointSplitting ps(m, sp, cr.incident());
+    std::vector<VertexId> steiner;
+    std::size_t split_off = 0;
+    const std::vector<VertexId> added = sp.added_in_order();
+    for (const bool edges : {true, false}) {
+        for (VertexId e : added) {
+            if (!sp.is_added(e) || sp.on_edge(e, nullptr, nullptr, nullptr) != edges) continue;
+            INFO("splitting added point " << e << (edges ? " (edge)" : " (face)"));
+            const std::size_t before = added_now(sp);
+            const std::size_t steiner_before = steiner.size();
+            const std::size_t vertices_before = m.vertex_count();
+            REQUIRE_MESSAGE(ps.split(e, steiner), ps.why());
+            ++split_off;
+            require_valid_but_unused(m, split_off, "after split");
+            CHECK(added_now(sp) == before - 1);
+            CHECK_FALSE(sp.is_added(e));
+            CHECK_FALSE(used_by_a_tet(m, e));
+            CHECK(steiner.size() > steiner_before);
+            CHECK(steiner.size() - steiner_before == m.vertex_count() - vertices_before);
+            for (std::size_t i = steiner_before; i < steiner.size(); ++i) {
+                CHECK(steiner[i] == vertices_before + (i - steiner_before));
+                CHECK_MESSAGE(!on_some_input_triangle(m, faces, steiner[i]), "Steiner point on the surface");
+                CHECK(used_by_a_tet(m, steiner[i]));
+            }
+            // An edge point leaves its chain, which stays a chain of mesh
+            // edges.
+            if (edges) {
+                for (std::size_t f : missing) {
+                    const Triangle& t = faces.triangle(f);
+                    for (int k = 0; k < 3; ++k) {
+                        const std::vector<VertexId> ch = sp.chain(t[k], t[(k + 1) % 3]);
+                        CHECK(std::find(ch.begin(), ch.end(), e) == ch.end());
+                        const std::vector<TetId> inc2 = incident_tets(m);
+                        for (std::size_t i = 0; i + 1 < ch.size(); ++i)
+                            CHECK(find_edge_tet(m, ch[i], inc2[ch[i]], ch[i + 1]) != kNoTet);
+                    }
+                }
+            }
+        }
+    }
+    CHECK(added_now(sp) == 0);
+    // Every Steiner point is still off the surface (none moved).
+    for (VertexId s : steiner) CHECK_FALSE(on_some_input_triangle(m, faces, s));
+    CHECK(cbr::recover::mark_present_faces(m, faces).empty());
+    require_valid_but_unused(m, split_off, "at the end");
+    // Compacted, the mesh is valid as a whole: the split-off points were the
+    // only unused vertices and the Steiner points are renumbered after the
+    // input ones.
+    std::vector<VertexId> kept = steiner;
+    compact_vertices_from(m, c.input_count, kept);
+    require_valid(m, "after compaction");
+    CHECK(kept.size() == steiner.size());
+    CHECK(m.vertex_count() == c.input_count + steiner.size());
+    st.steiner = steiner.size();
+    return st;
+}
+
+// Schonhardt-type prism: `levels` triangles stacked, each turned by `twist`
+// from the one below, the lateral quads split by the reflex diagonals; the
+// intermediate triangles are faces too (then their edges have three
+// triangles).
+cbr::test::Polyhedron twisted_stack(int levels, double twist) {
+    cbr::test::Polyhedron p;
+    for (int level = 0; level < levels; ++level)
+        for (int i = 0; i < 3; ++i) {
+            const double a = 2 * kPi * i / 3 + level * twist;
+            p.xyz.insert(p.xyz.end(), {std::cos(a), std::sin(a), double(level)});
+        }
+    p.tris = {0, 2, 1};
+    for (int level = 0; level + 1 < levels; ++level) {
+        const int b = 3 * level, u = 3 * (level + 1);
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3;
+            p.tris.insert(p.tris.end(), {b + i, b + j, u + j, b + i, u + j, u + i});
+        }
+        p.tris.insert(p.tris.end(), {u, u + 1, u + 2});
+    }
+    return p;
+}
+
+// The prism turned by an arbitrary rotation, scaled and moved: every
+// coordinate rounded.
+cbr::test::Polyhedron rotated(cbr::test::Polyhedron p, double ax, double ay, double az, double scale,
+                              const double shift[3]) {
+    const double cx = std::cos(ax), sx = std::sin(ax), cy = std::cos(ay), sy = std::sin(ay), cz = std::cos(az),
+                 sz = std::sin(az);
+    const double r[3][3] = {{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+                            {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+                            {-sy, cy * sx, cy * cx}};
+    for (std::size_t i = 0; i + 2 < p.xyz.size(); i += 3) {
+        const double x[3] = {p.xyz[i], p.xyz[i + 1], p.xyz[i + 2]};
+        for (int k = 0; k < 3; ++k)
+            p.xyz[i + k] = shift[k] + scale * (r[k][0] * x[0] + r[k][1] * x[1] + r[k][2] * x[2]);
+    }
+    return p;
+}
+
+// Triangle A B C (tilted, integer corners) with pairs of points just above
+// and below it at the barycentric positions selected by `mask`; `far` adds
+// the corners of a big cube; `closed` adds apex D and the other three faces
+// of the tetrahedron ABCD (a closed surface), else the triangle is alone
+// (an open surface: its edges have one triangle).
+cbr::test::Polyhedron pierced_triangle(int mask, bool far, bool closed, double far_size = 15.0) {
+    cbr::test::Polyhedron p;
+    p.xyz = {0, 0, 0, 8, 1, 2, 1, 7, -1};
+    p.tris = {0, 1, 2};
+    if (closed) {
+        p.xyz.insert(p.xyz.end(), {3, 3, 9});
+        p.tris = {0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3};
+    }
+    const double u[3] = {8, 1, 2}, v[3] = {1, 7, -1};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double bary[6][2] = {{0.2, 0.3}, {0.5, 0.2}, {0.3, 0.45}, {0.15, 0.15}, {0.6, 0.3}, {0.3, 0.3}};
+    for (int i = 0; i < 6; ++i) {
+        if (!(mask >> i & 1)) continue;
+        for (const double h : {0.21, -0.17}) {
+            const double hh = h * (1 + bary[i][0]);
+            for (int k = 0; k < 3; ++k) p.xyz.push_back(bary[i][0] * u[k] + bary[i][1] * v[k] + hh * n[k] / nl);
+        }
+    }
+    if (far)
+        for (int sx = -1; sx <= 1; sx += 2)
+            for (int sy = -1; sy <= 1; sy += 2)
+                for (int sz = -1; sz <= 1; sz += 2) p.xyz.insert(p.xyz.end(), {4 + far_size * sx, 4 + far_size * sy, far_size * sz});
+    return p;
+}
+
+// Minimum over the four corners of 6 |V| / (product of the three edge
+// lengths at the corner): the sine-like flatness of a tetrahedron.
+double relative_volume(const TetMesh& m, TetId t) {
+    const double* p[4] = {m.point(m.vertex(t, 0)), m.point(m.vertex(t, 1)), m.point(m.vertex(t, 2)),
+                          m.point(m.vertex(t, 3))};
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = p[1][k] - p[0][k];
+        v[k] = p[2][k] - p[0][k];
+        w[k] = p[3][k] - p[0][k];
+    }
+    const double six = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                                 u[2] * (v[0] * w[1] - v[1] * w[0]));
+    double worst = INFINITY;
+    for (int i = 0; i < 4; ++i) {
+        double prod = 1;
+        for (int j = 0; j < 4; ++j)
+            if (j != i) prod *= dist(p[i], p[j]);
+        worst = std::min(worst, six / prod);
+    }
+    return worst;
+}
+
+}  // namespace
+
+// ===========================================================================
+// 1. Polygon triangulation
+
+TEST_CASE("triangulate_polygon: convex polygon, counter-clockwise and clockwise") {
+    std::vector<P2> pts;
+    const int n = 9;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * kPi * i / n + 0.1;
+        pts.push_back({3 * std::cos(a) + 0.5, 2 * std::sin(a) - 1, 0.0});
+    }
+    const auto tris = triangulate_polygon(ptrs(pts), Projection{0, 1}, +1);
+    check_triangulation(pts, +1, tris);
+
+    std::vector<P2> cw(pts.rbegin(), pts.rend());
+    const auto tris_cw = triangulate_polygon(ptrs(cw), Projection{0, 1}, -1);
+    check_triangulation(cw, -1, tris_cw);
+    CHECK(shoelace(cw) < 0);
+
+    // The wrong turn has no triangulation.
+    CHECK(triangulate_polygon(ptrs(pts), Projection{0, 1}, -1).empty());
+    CHECK(triangulate_polygon(ptrs(cw), Projection{0, 1}, +1).empty());
+    // A triangle is itself.
+    const std::vector<P2> tri = {P2{0, 0, 0}, P2{1, 0, 0}, P2{0, 1, 0}};
+    const auto one = triangulate_polygon(ptrs(tri), Projection{0, 1}, +1);
+    REQUIRE(one.size() == 1);
+    CHECK(one[0] == std::array<int, 3>{0, 1, 2});
+}
+
+TEST_CASE("triangulate_polygon: non-convex star-shaped polygons, every rotation of the loop") {
+    // A star: alternate long and short spokes, strongly reflex.
+    std::vector<P2> star;
+    const int spikes = 6;
+    for (int i = 0; i < 2 * spikes; ++i) {
+        const double a = kPi * i / spikes;
+        const double r = i % 2 ? 0.6 : 3.0;
+        star.push_back({r * std::cos(a), r * std::sin(a), 0.0});
+    }
+    for (int rot = 0; rot < static_cast<int>(star.size()); ++rot) {
+        INFO("rotation " << rot);
+        std::vector<P2> loop(star.begin() + rot, star.end());
+        loop.insert(loop.end(), star.begin(), star.begin() + rot);
+        check_triangulation(loop, +1, triangulate_polygon(ptrs(loop), Projection{0, 1}, +1));
+        std::vector<P2> rev(loop.rbegin(), loop.rend());
+        check_triangulation(rev, -1, triangulate_polygon(ptrs(rev), Projection{0, 1}, -1));
+    }
+    // Random star-shaped polygons around the origin (the fans of added
+    // points look like this), including nearly collinear runs.
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    for (int trial = 0; trial < 300; ++trial) {
+        const int n = 3 + static_cast<int>(U(rng) * 12);
+        std::vector<double> angles;
+        for (int i = 0; i < n; ++i) angles.push_back(2 * kPi * U(rng));
+        std::sort(angles.begin(), angles.end());
+        bool ok = true;  // spokes at least a little apart and no gap of pi or more
+        for (int i = 0; i < n; ++i) {
+            const double gap = i + 1 < n ? angles[i + 1] - angles[i] : angles[0] + 2 * kPi - angles[i];
+            ok = ok && gap > 1e-3 && gap < kPi - 1e-3;
+        }
+        if (!ok) continue;
+        std::vector<P2> loop;
+        for (double a : angles) {
+            const double r = 0.2 + 3 * U(rng);
+            loop.push_back({r * std::cos(a), r * std::sin(a), 0.0});
+        }
+        INFO("trial " << trial << " n " << n);
+        check_triangulation(loop, +1, triangulate_polygon(ptrs(loop), Projection{0, 1}, +1));
+    }
+}
+
+TEST_CASE("triangulate_polygon: a reflex vertex inside the ear of its neighbours is never covered") {
+    // Vertex 2 pokes into the polygon so that triangle (1, 3, 5) would
+    // contain it while its sides cross no polygon edge that does not touch
+    // them: only the containment test refuses it.
+    const std::vector<P2> loop = {P2{0, 0, 0}, P2{4, 0, 0}, P2{2.2, 1.0, 0}, P2{4, 3, 0}, P2{2, 4, 0}, P2{0, 3, 0}};
+    const auto tris = triangulate_polygon(ptrs(loop), Projection{0, 1}, +1);
+    check_triangulation(loop, +1, tris);
+    // Also a dart (arrow head): one reflex vertex at the back.
+    const std::vector<P2> dart = {P2{0, 0, 0}, P2{5, 2, 0}, P2{0, 4, 0}, P2{1.5, 2, 0}};
+    check_triangulation(dart, +1, triangulate_polygon(ptrs(dart), Projection{0, 1}, +1));
+    const std::vector<P2> dart2 = {P2{1.5, 2, 0}, P2{0, 0, 0}, P2{5, 2, 0}, P2{0, 4, 0}};
+    check_triangulation(dart2, +1, triangulate_polygon(ptrs(dart2), Projection{0, 1}, +1));
+}
+
+TEST_CASE("triangulate_polygon: every simple polygon on a small integer grid (collinear vertices too)") {
+    // Random loops of 4-8 points of {-3..3}^2, kept when simple (no contact
+    // between non-adjacent edges, no edge folding back) and counter-
+    // clockwise: each has a triangulation, and it is valid.
+    std::mt19937_64 rng(17);
+    std::uniform_int_distribution<int> G(-3, 3);
+    std::uniform_int_distribution<int> N(4, 8);
+    const Projection pr{0, 1};
+    int simple_count = 0;
+    for (int trial = 0; trial < 200000 && simple_count < 3000; ++trial) {
+        const int n = N(rng);
+        std::vector<P2> loop;
+        for (int i = 0; i < n; ++i) loop.push_back({double(G(rng)), double(G(rng)), 0.0});
+        bool simple = true;
+        for (int i = 0; i < n && simple; ++i)
+            for (int j = i + 1; j < n && simple; ++j) {
+                if (loop[i] == loop[j]) simple = false;
+                const int i2 = (i + 1) % n, j2 = (j + 1) % n;
+                if (i2 == j || j2 == i) continue;
+                const double *a = loop[i].data(), *b = loop[i2].data(), *c = loop[j].data(), *d = loop[j2].data();
+                const int o1 = orient2d(pr, a, b, c), o2 = orient2d(pr, a, b, d), o3 = orient2d(pr, c, d, a),
+                          o4 = orient2d(pr, c, d, b);
+                if (o1 * o2 <= 0 && o3 * o4 <= 0) {
+                    if (o1 == 0 && o2 == 0) {
+                        bool overlap = true;
+                        for (int k = 0; k < 2; ++k)
+                            overlap = overlap && std::max(a[k], b[k]) >= std::min(c[k], d[k]) &&
+                                      std::max(c[k], d[k]) >= std::min(a[k], b[k]);
+                        if (overlap) simple = false;
+                    } else {
+                        simple = false;
+                    }
+                }
+            }
+        for (int i = 0; i < n && simple; ++i) {
+            const P2 &a = loop[(i + n - 1) % n], &b = loop[i], &c = loop[(i + 1) % n];
+            if (orient2d(pr, a.data(), b.data(), c.data()) == 0 &&
+                (a[0] - b[0]) * (c[0] - b[0]) + (a[1] - b[1]) * (c[1] - b[1]) > 0)
+                simple = false;
+        }
+        if (!simple || shoelace(loop) <= 0) continue;
+        ++simple_count;
+        INFO("trial " << trial);
+        check_triangulation(loop, +1, triangulate_polygon(ptrs(loop), pr, +1));
+        std::vector<P2> rev(loop.rbegin(), loop.rend());
+        check_triangulation(rev, -1, triangulate_polygon(ptrs(rev), pr, -1));
+    }
+    CHECK(simple_count == 3000);
+}
+
+TEST_CASE("triangulate_polygon: folded, self-crossing and degenerate loops have none") {
+    const Projection pr{0, 1};
+    // Bow tie.
+    const std::vector<P2> bow = {P2{0, 0, 0}, P2{1, 1, 0}, P2{1, 0, 0}, P2{0, 1, 0}};
+    CHECK(triangulate_polygon(ptrs(bow), pr, +1).empty());
+    CHECK(triangulate_polygon(ptrs(bow), pr, -1).empty());
+    // All on a line.
+    const std::vector<P2> line = {P2{0, 0, 0}, P2{1, 1, 0}, P2{2, 2, 0}, P2{3, 3, 0}};
+    CHECK(triangulate_polygon(ptrs(line), pr, +1).empty());
+    CHECK(triangulate_polygon(ptrs(line), pr, -1).empty());
+    // A fan that folds over itself (a loop winding twice around a point,
+    // as a projection of a too-curved polygon would): every triangle of the
+    // right sign exists locally, but no triangulation of the whole.
+    std::vector<P2> twice;
+    for (int i = 0; i < 7; ++i) {
+        const double a = 4 * kPi * i / 7;
+        twice.push_back({std::cos(a) * (1 + 0.1 * i), std::sin(a) * (1 + 0.1 * i), 0.0});
+    }
+    CHECK(triangulate_polygon(ptrs(twice), pr, +1).empty());
+    CHECK(triangulate_polygon(ptrs(twice), pr, -1).empty());
+    // Self-crossing loops (found by a differential search against builds
+    // without the containment test, resp. without the chord test: each of
+    // those alone returns triangles for them).
+    const std::vector<std::vector<P2>> crossing = {
+        {P2{2, -3, 0}, P2{2, 2, 0}, P2{-2, -3, 0}, P2{0, -2, 0}, P2{-1, -2, 0}},
+        {P2{-1, 2, 0}, P2{0, -3, 0}, P2{1, 0, 0}, P2{0, -1, 0}, P2{2, -1, 0}},
+        {P2{1, 0, 0}, P2{2, 1, 0}, P2{-1, -3, 0}, P2{2, 3, 0}, P2{2, -2, 0}},
+        {P2{2, -3, 0}, P2{-2, -3, 0}, P2{-2, 1, 0}, P2{3, -3, 0}, P2{-3, -2, 0}, P2{0, -1, 0}},
+        {P2{0, -1, 0}, P2{-3, -1, 0}, P2{3, 2, 0}, P2{1, -2, 0}, P2{-3, 1, 0}, P2{-3, 2, 0}},
+        {P2{-3, -3, 0}, P2{3, -1, 0}, P2{-1, 2, 0}, P2{0, 0, 0}, P2{-1, -2, 0}, P2{3, 2, 0}},
+    };
+    for (std::size_t c = 0; c < crossing.size(); ++c) {
+        INFO("self-crossing loop " << c);
+        CHECK(triangulate_polygon(ptrs(crossing[c]), pr, +1).empty());
+        CHECK(triangulate_polygon(ptrs(crossing[c]), pr, -1).empty());
+    }
+    // Fewer than three vertices.
+    CHECK(triangulate_polygon(ptrs(std::vector<P2>(bow.begin(), bow.begin() + 2)), pr, +1).empty());
+    // Degenerate: a vertex on the segment between its neighbours (a
+    // triangle with a collinear "corner"): no triangle may be flat.
+    const std::vector<P2> flat = {P2{0, 0, 0}, P2{1, 0, 0}, P2{2, 0, 0}};
+    CHECK(triangulate_polygon(ptrs(flat), pr, +1).empty());
+}
+
+TEST_CASE("triangulate_polygon: maximizes the smallest triangle quality") {
+    // A rhombus long in x: the short diagonal (1-3) gives two fat
+    // triangles (quality 0.87), the long one (0-2) two flat ones (0.37).
+    std::vector<P2> rh = {P2{-3, 0, 0}, P2{0, -1, 0}, P2{3, 0, 0}, P2{0, 1, 0}};
+    for (int rot = 0; rot < 4; ++rot) {
+        INFO("rotation " << rot);
+        const auto tris = triangulate_polygon(ptrs(rh), Projection{0, 1}, +1);
+        check_triangulation(rh, +1, tris);
+        // The vertices at y = +-1 are joined: both triangles use them.
+        for (const auto& t : tris) {
+            int fat = 0;
+            for (int k : t) fat += std::fabs(rh[k][0]) < 0.5;
+            CHECK(fat == 2);
+        }
+        std::rotate(rh.begin(), rh.begin() + 1, rh.end());
+    }
+    // A regular hexagon stretched: among the 14 triangulations the best
+    // max-min one has no sliver; compare with a brute-force optimum.
+    std::vector<P2> hex;
+    for (int i = 0; i < 6; ++i) {
+        const double a = 2 * kPi * i / 6;
+        hex.push_back({4 * std::cos(a), std::sin(a), 0.0});
+    }
+    const auto quality = [](const P2& a, const P2& b, const P2& c) {
+        const double ar = std::fabs(tri_area2d(a, b, c)) * 2;
+        double s = 0;
+        for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+            s += (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]);
+        return 2 * std::sqrt(3.0) * ar / s;
+    };
+    const auto tris = triangulate_polygon(ptrs(hex), Projection{0, 1}, +1);
+    check_triangulation(hex, +1, tris);
+    double got = INFINITY;
+    for (const auto& t : tris) got = std::min(got, quality(hex[t[0]], hex[t[1]], hex[t[2]]));
+    // Brute force: every triangulation of a convex hexagon by recursion.
+    std::function<double(int, int)> best = [&](int i, int j) -> double {
+        if (j - i < 2) return INFINITY;
+        double b = -1;
+        for (int k = i + 1; k < j; ++k) b = std::max(b, std::min({quality(hex[i], hex[k], hex[j]), best(i, k), best(k, j)}));
+        return b;
+    };
+    CHECK(got == doctest::Approx(best(0, 5)).epsilon(1e-12));
+}
+
+// ===========================================================================
+// 2. Vertex compaction
+
+TEST_CASE("compact_vertices_from: drops unused vertices after `first`, renumbers the others in order") {
+    const auto xyz = cbr::test::random_points(40, 3);
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(xyz.data(), 40).ok);
+    TetMesh& m = d.mesh_for_update();
+    const std::size_t n = m.vertex_count();
+    // Append 6 extra points; insert 3 of them (ids n+1, n+3, n+4) with
+    // protected insertion, leave n, n+2, n+5 unused.
+    const std::vector<double> extra = {0.31, 0.42, 0.53, 0.5, 0.5, 0.5, 0.71, 0.22, 0.63,
+                                       0.2,  0.3,  0.4,  0.6, 0.7, 0.35, 0.9, 0.9, 0.1};
+    const VertexId first_new = m.add_points(extra.data(), 6);
+    REQUIRE(first_new == n);
+    std::map<VertexId, std::array<double, 3>> where;
+    for (VertexId v : {VertexId(n + 1), VertexId(n + 3), VertexId(n + 4)}) {
+        const double* q = m.point(v);
+        where[v] = {q[0], q[1], q[2]};
+        TetId start = kNoTet;
+        for (TetId t = 0; t < m.slot_count() && start == kNoTet; ++t) {
+            if (m.is_free(t) || m.is_ghost(t)) continue;
+            bool in = true;
+            for (int f = 0; f < 4 && in; ++f) {
+                const int* k = kFaceVertices[f];
+                in = cbr::geom::orient3d(m.point(m.vertex(t, k[0])), m.point(m.vertex(t, k[1])),
+                                         m.point(m.vertex(t, k[2])), q) >= 0;
+            }
+            if (in) start = t;
+        }
+        REQUIRE(start != kNoTet);
+        REQUIRE(cbr::recover::insert_protected(m, v, start).ok);
+    }
+    // `first` = n - 1: vertex n - 1 (a Delaunay vertex, used) is the first
+    // candidate and keeps its id; vertices below it are never touched.
+    const std::vector<double> before(m.coordinates().begin(), m.coordinates().begin() + 3 * (n - 1));
+    std::map<TetId, std::array<VertexId, 4>> tets_before;
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t)) tets_before[t] = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+    std::vector<VertexId> keep = {VertexId(n + 5), VertexId(n + 4), VertexId(n - 1), VertexId(n), VertexId(n + 1),
+                                  VertexId(n + 3), VertexId(n + 2), 5};
+    compact_vertices_from(m, n - 1, keep);
+
+    REQUIRE(m.vertex_count() == n + 3);
+    // Below `first`: coordinates identical.
+    CHECK(std::equal(before.begin(), before.end(), m.coordinates().begin()));
+    // Used ones renumbered in order: n-1 -> n-1, n+1 -> n, n+3 -> n+1, n+4 -> n+2.
+    const std::map<VertexId, VertexId> expect = {
+        {VertexId(n - 1), VertexId(n - 1)}, {VertexId(n + 1), VertexId(n)}, {VertexId(n + 3), VertexId(n + 1)},
+        {VertexId(n + 4), VertexId(n + 2)}};
+    for (const auto& [old_id, new_id] : expect) {
+        if (old_id >= n) {
+            const double* q = m.point(new_id);
+            CHECK(q[0] == where[old_id][0]);
+            CHECK(q[1] == where[old_id][1]);
+            CHECK(q[2] == where[old_id][2]);
+        }
+    }
+    // Tetrahedra remapped (slot by slot), nothing else changed.
+    for (const auto& [t, v] : tets_before) {
+        REQUIRE_FALSE(m.is_free(t));
+        for (int i = 0; i < 4; ++i) {
+            const VertexId want = v[i] == kGhostVertex || v[i] < n - 1 ? v[i] : expect.at(v[i]);
+            CHECK(m.vertex(t, i) == want);
+        }
+    }
+    // keep list: dropped ones removed, the others mapped, order kept.
+    const std::vector<VertexId> want_keep = {VertexId(n + 2), VertexId(n - 1), VertexId(n), VertexId(n + 1), 5};
+    CHECK(keep == want_keep);
+    require_valid(m, "after compaction");
+    // Every vertex is used now.
+    for (VertexId v = 0; v < m.vertex_count(); ++v) CHECK(used_by_a_tet(m, v));
+    CHECK(m.point(VertexId(n - 1))[0] == xyz[3 * d.external_id(VertexId(n - 1))]);
+    // A vertex below `first` is kept even when unused: N (unused), N + 1
+    // (inserted), N + 2 (unused), compacted from N + 1.
+    const std::size_t N = m.vertex_count();
+    const std::vector<double> more = {0.45, 0.55, 0.65, 0.35, 0.25, 0.45, 0.15, 0.85, 0.75};
+    m.add_points(more.data(), 3);
+    {
+        const double* q = m.point(VertexId(N + 1));
+        TetId start = kNoTet;
+        for (TetId t = 0; t < m.slot_count() && start == kNoTet; ++t) {
+            if (m.is_free(t) || m.is_ghost(t)) continue;
+            bool in = true;
+            for (int f = 0; f < 4 && in; ++f) {
+                const int* k = kFaceVertices[f];
+                in = cbr::geom::orient3d(m.point(m.vertex(t, k[0])), m.point(m.vertex(t, k[1])),
+                                         m.point(m.vertex(t, k[2])), q) >= 0;
+            }
+            if (in) start = t;
+        }
+        REQUIRE(start != kNoTet);
+        REQUIRE(cbr::recover::insert_protected(m, VertexId(N + 1), start).ok);
+    }
+    std::vector<VertexId> k3 = {VertexId(N), VertexId(N + 2), VertexId(N + 1)};
+    compact_vertices_from(m, N + 1, k3);
+    CHECK(m.vertex_count() == N + 2);
+    CHECK(m.point(VertexId(N))[0] == more[0]);
+    CHECK(m.point(VertexId(N + 1))[0] == more[3]);
+    CHECK(k3 == std::vector<VertexId>{VertexId(N), VertexId(N + 1)});
+    CHECK_FALSE(used_by_a_tet(m, VertexId(N)));
+    CHECK(used_by_a_tet(m, VertexId(N + 1)));
+    // first beyond the end: nothing to do.
+    std::vector<VertexId> k2 = {1, 2};
+    compact_vertices_from(m, m.vertex_count(), k2);
+    CHECK(m.vertex_count() == N + 2);
+    CHECK(k2 == std::vector<VertexId>{1, 2});
+}
+
+// ===========================================================================
+// 3. ConformingRecovery + PointSplitting
+
+TEST_CASE("conforming recovery and splitting: the Schonhardt prism") {
+    Case c;
+    const cbr::test::Polyhedron p = cbr::test::schonhardt_prism();
+    build(c, p.xyz, p.tris);
+    std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+    REQUIRE(!missing.empty());  // lateral triangles on the reflex diagonals
+    missing = cbr::recover::recover_by_flips(c.m(), *c.faces, missing);
+    REQUIRE_MESSAGE(!missing.empty(), "flips cannot recover the Schonhardt prism");
+    require_valid(c.m(), "after flips");
+    const SplitStats st = conform_and_split(c, missing);
+    MESSAGE("prism: " << st.edge_points << " edge points, " << st.face_points << " face points, " << st.steiner
+                      << " Steiner points");
+    CHECK(st.edge_points > 0);
+    CHECK(st.steiner >= st.edge_points + st.face_points);
+}
+
+TEST_CASE("conforming recovery and splitting: rotated and stacked Schonhardt prisms") {
+    const double shift[3] = {0.3, -1.25, 2.5};
+    struct Variant {
+        const char* name;
+        cbr::test::Polyhedron p;
+    };
+    const std::vector<Variant> variants = {
+        {"twist 25, rotated", rotated(twisted_stack(2, 25 * kPi / 180), 0.3, 1.1, -0.7, 3.7, shift)},
+        {"twist 45, rotated", rotated(twisted_stack(2, 45 * kPi / 180), -1.2, 0.4, 2.2, 0.013, shift)},
+        {"stack of three", twisted_stack(4, kPi / 6)},
+        {"stack of three, rotated", rotated(twisted_stack(4, kPi / 6), 0.9, -0.35, 0.15, 11.0, shift)},
+    };
+    for (const Variant& v : variants) {
+        INFO(std::string(v.name));
+        Case c;
+        build(c, v.p.xyz, v.p.tris);
+        std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+        missing = cbr::recover::recover_by_flips(c.m(), *c.faces, missing);
+        REQUIRE(!missing.empty());
+        const SplitStats st = conform_and_split(c, missing);
+        MESSAGE(std::string(v.name) << ": " << missing.size() << " faces after flips, " << st.edge_points << " edge points, "
+                       << st.face_points << " face points, " << st.steiner << " Steiner points");
+        CHECK(st.edge_points + st.face_points > 0);
+    }
+}
+
+TEST_CASE("conforming recovery and splitting: points inside a face (ball transformation)") {
+    // The closed surface of a tetrahedron; its face 0 (a tilted triangle) is
+    // pierced by short edges between points just above and just below it.
+    // Conforming recovery (no flips first) puts points inside the face,
+    // with several points per face their balls overlap.
+    std::size_t total_face_points = 0, most = 0;
+    for (int mask = 1; mask < 64; ++mask)
+        for (const double far : {0.0, 15.0, 25.0}) {
+            INFO("mask " << mask << ", far points at " << far);
+            const cbr::test::Polyhedron p = pierced_triangle(mask, far > 0, true, far);
+            Case c;
+            build(c, p.xyz, p.tris);
+            const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+            REQUIRE(!missing.empty());
+            const SplitStats st = conform_and_split(c, missing);
+            total_face_points += st.face_points;
+            most = std::max(most, st.face_points);
+        }
+    MESSAGE("pierced tetrahedron surfaces: " << total_face_points << " face points, up to " << most << " in one case");
+    CHECK(total_face_points > 50);
+    CHECK(most >= 8);
+}
+
+TEST_CASE("conforming recovery and splitting: a non-manifold edge (three triangles)") {
+    // Edge AB (the z axis) with three fins; a small triangle of points
+    // around its middle crosses AB and the fins, so AB is not a Delaunay
+    // edge and its added point has three fans (three wedges).
+    std::vector<double> xyz = {0, 0, -2, 0, 0, 2};
+    std::vector<std::int64_t> tris;
+    for (int k = 0; k < 3; ++k) {
+        const double a = 2 * kPi * k / 3;
+        xyz.insert(xyz.end(), {3 * std::cos(a), 3 * std::sin(a), 0.3 * k - 0.2});
+        tris.insert(tris.end(), {0, 1, 2 + k});
+    }
+    for (int k = 0; k < 3; ++k) {
+        const double a = 2 * kPi * k / 3 + kPi / 3;
+        xyz.insert(xyz.end(), {0.3 * std::cos(a), 0.3 * std::sin(a), 0.1 + 0.05 * k});
+    }
+    for (int sx = -1; sx <= 1; sx += 2)
+        for (int sy = -1; sy <= 1; sy += 2)
+            for (int sz = -1; sz <= 1; sz += 2) xyz.insert(xyz.end(), {10.0 * sx, 10.0 * sy + 0.5, 10.0 * sz});
+    Case c;
+    build(c, xyz, tris);
+    const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+    REQUIRE(missing.size() == 3);
+    const SplitStats st = conform_and_split(c, missing);
+    MESSAGE("fins: " << st.edge_points << " edge points, " << st.face_points << " face points, " << st.steiner
+                     << " Steiner points, up to " << st.max_fans << " triangles at an edge point");
+    CHECK(st.max_fans == 3);
+    CHECK(st.edge_points > 0);
+}
+
+// ===========================================================================
+// 4. The driver
+
+TEST_CASE("recover_faces: Schonhardt prism, stack and rotated variants") {
+    const double shift[3] = {-0.7, 0.2, 1.5};
+    struct Variant {
+        const char* name;
+        cbr::test::Polyhedron p;
+        bool needs_steiner;
+    };
+    const std::vector<Variant> variants = {
+        {"prism", cbr::test::schonhardt_prism(), true},
+        {"stack of three", twisted_stack(4, kPi / 6), true},
+        {"rotated, twist 25", rotated(twisted_stack(2, 25 * kPi / 180), 0.3, 1.1, -0.7, 3.7, shift), true},
+        {"rotated stack", rotated(twisted_stack(4, kPi / 6), 0.9, -0.35, 0.15, 11.0, shift), true},
+    };
+    for (const Variant& v : variants) {
+        INFO(std::string(v.name));
+        Case c;
+        build(c, v.p.xyz, v.p.tris);
+        TetMesh& m = c.m();
+        const std::vector<double> input(m.coordinates());
+        cbr::recover::RecoveryStats stats;
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
+        REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+        CHECK(r.unrecovered.empty());
+        CHECK(r.invalid.empty());
+        require_valid(m, "after recover_faces");
+        CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+        // Input points unchanged, bit for bit.
+        CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
+        if (v.needs_steiner) CHECK(!r.steiner.empty());
+        // Steiner ids are exactly [input count, vertex count), in order.
+        REQUIRE(r.steiner.size() == m.vertex_count() - c.input_count);
+        for (std::size_t i = 0; i < r.steiner.size(); ++i) CHECK(r.steiner[i] == c.input_count + i);
+        for (VertexId s : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, s));
+        for (VertexId x = 0; x < m.vertex_count(); ++x) CHECK(used_by_a_tet(m, x));
+        CHECK(stats.missing_faces > 0);
+        CHECK(stats.conforming_points > 0);
+        CHECK(stats.steiner_generated >= stats.steiner_remaining);
+        CHECK(stats.steiner_remaining == r.steiner.size());
+        MESSAGE(std::string(v.name) << ": missing " << stats.missing_faces << ", by flips " << stats.recovered_by_flips
+                       << ", conforming " << stats.conforming_points << ", Steiner " << stats.steiner_generated << " -> "
+                       << stats.steiner_remaining);
+    }
+}
+
+// ===========================================================================
+// 5. Protected insertion: the nearly_flat rule
+
+TEST_CASE("protected insertion: the rounded crossing of a planar quad's diagonals makes no sliver") {
+    // Integer points exactly on the tilted plane x + 2y + 3z = 6, a convex
+    // quad around c; far points on both sides. The quad is small and the
+    // other points far, so both quad triangles are Delaunay faces and one
+    // diagonal is an edge. p = the rounded crossing of the diagonals lies
+    // a rounding error off the plane; inserted with the half of the
+    // diagonal's shell on p's side as initial cavity, the in-plane faces
+    // are boundary faces seen from p at a flat angle: without the
+    // nearly_flat rule the cones over them are slivers.
+    const double c[3] = {2, 2, 0};  // 2 + 4 + 0 = 6
+    const double U[3] = {2, -1, 0}, W[3] = {3, 0, -1};
+    const double N[3] = {1, 2, 3};
+    std::mt19937_64 rng(11);
+    std::uniform_int_distribution<int> big(3, 9), small(-1, 1);
+    int variants = 0, off_plane = 0, took_in = 0;
+    double worst = INFINITY;
+    for (int trial = 0; trial < 40; ++trial) {
+        const int qa[4][2] = {{big(rng), small(rng)}, {small(rng), big(rng)}, {-big(rng), small(rng)}, {small(rng), -big(rng)}};
+        std::vector<double> xyz;
+        for (const auto& q : qa)
+            for (int k = 0; k < 3; ++k) xyz.push_back(c[k] + q[0] * U[k] + q[1] * W[k]);
+        for (int s = -1; s <= 1; s += 2)
+            for (int i = -1; i <= 1; ++i)
+                for (int j = -1; j <= 1; ++j)
+                    for (int k = 0; k < 3; ++k) xyz.push_back(c[k] + s * 40 * N[k] + 60 * i * U[k] + 60 * j * W[k] + (i == 0 && j == 0 ? 7 : 0));
+        cbr::delaunay::Delaunay d;
+        REQUIRE(d.insert_points(xyz.data(), xyz.size() / 3).ok);
+        TetMesh& m = d.mesh_for_update();
+        VertexId q[4];
+        for (int i = 0; i < 4; ++i) q[i] = d.internal_id(static_cast<VertexId>(i));
+        for (int i = 0; i < 4; ++i) REQUIRE(cbr::geom::orient3d(m.point(q[0]), m.point(q[1]), m.point(q[2]), m.point(q[3])) == 0);
+        const std::vector<TetId> inc = incident_tets(m);
+        // The diagonal present: (d0, d2); the other (d1, d3).
+        VertexId d0 = q[0], d1 = q[1], d2 = q[2], d3 = q[3];
+        TetId et = find_edge_tet(m, q[0], inc[q[0]], q[2]);
+        if (et == kNoTet) {
+            d0 = q[1], d1 = q[2], d2 = q[3], d3 = q[0];
+            et = find_edge_tet(m, q[1], inc[q[1]], q[3]);
+        }
+        if (et == kNoTet) continue;  // neither diagonal (should not happen)
+        // Rounded crossing: the point of d0 d2 nearest to line d1 d3.
+        const double *P0 = m.point(d0), *P2 = m.point(d2), *P1 = m.point(d1), *P3 = m.point(d3);
+        double e1[3], e2[3], r[3];
+        for (int k = 0; k < 3; ++k) {
+            e1[k] = P2[k] - P0[k];
+            e2[k] = P3[k] - P1[k];
+            r[k] = P0[k] - P1[k];
+        }
+        const auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+        const double a = dot(e1, e1), e = dot(e2, e2), b = dot(e1, e2), cc = dot(e1, r), f = dot(e2, r);
+        const double s = (b * f - cc * e) / (a * e - b * b);
+        double p[3];
+        for (int k = 0; k < 3; ++k) p[k] = P0[k] + s * e1[k];
+        const int side = cbr::geom::orient3d(P0, P1, P2, p);
+        ++variants;
+        if (side != 0) ++off_plane;
+        // Initial cavity: the tetrahedra of the diagonal's shell on p's side
+        // (all of them when p is exactly on the plane would also do; then
+        // take the + side).
+        Shell sh;
+        REQUIRE(shell(m, d0, d2, et, sh));
+        const int want = side == 0 ? 1 : side;
+        std::vector<TetId> cavity;
+        for (std::size_t i = 0; i < sh.size(); ++i) {
+            const VertexId x = sh.ring[i], y = sh.ring[(i + 1) % sh.size()];
+            const int ox = cbr::geom::orient3d(P0, P1, P2, m.point(x)), oy = cbr::geom::orient3d(P0, P1, P2, m.point(y));
+            if (ox * want >= 0 && oy * want >= 0) cavity.push_back(sh.tets[i]);
+        }
+        REQUIRE(!cavity.empty());
+        REQUIRE(cavity.size() < sh.size());
+        TetId start = kNoTet;
+        for (TetId t : cavity) {
+            bool in = true;
+            for (int g = 0; g < 4 && in; ++g) {
+                const int* k = kFaceVertices[g];
+                in = cbr::geom::orient3d(m.point(m.vertex(t, k[0])), m.point(m.vertex(t, k[1])),
+                                         m.point(m.vertex(t, k[2])), p) >= 0;
+            }
+            if (in) start = t;
+        }
+        if (start == kNoTet) continue;  // p rounded off the diagonal's half shell
+        const VertexId pv = m.add_points(p, 1);
+        const cbr::recover::ProtectedInsertResult res = cbr::recover::insert_protected_in_cavity(m, pv, start, cavity);
+        REQUIRE_MESSAGE(res.ok, res.why);
+        require_valid(m, "after the insertion");
+        took_in += res.added > 0;
+        for (TetId t : res.created) {
+            if (m.is_ghost(t)) continue;
+            const double rv = relative_volume(m, t);
+            worst = std::min(worst, rv);
+            CHECK_MESSAGE(rv > 1e-12, "trial " << trial << ": a new tetrahedron flat to " << rv << " (p off the plane by "
+                                               << side << ")");
+        }
+    }
+    MESSAGE(variants << " quads, " << off_plane << " crossings rounded off the plane, " << took_in
+                     << " cavities grew across the plane; flattest new tetrahedron " << worst);
+    CHECK(variants >= 20);
+    CHECK(off_plane >= 5);  // else this test does not test the rule
+}
+
+
+// ===========================================================================
+// Known failures (found while writing these tests; reported). may_fail: they
+// are reported without failing the run; drop the decorator once fixed.
+
+TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)" *
+          doctest::may_fail()) {
+    // Same inputs as the ball transformation test above, but through the
+    // driver: flips run first and leave meshes that conforming recovery or
+    // splitting then refuse (e.g. mask 9 without far points, 8 points:
+    // "no Steiner point position sees the whole wedge"; mask 11, 10 points:
+    // "p coincides with a vertex of the mesh").
+    for (int mask = 1; mask < 32; ++mask)
+        for (const bool far : {false, true}) {
+            INFO("mask " << mask << (far ? " with" : " without") << " far points");
+            const cbr::test::Polyhedron p = pierced_triangle(mask, far, true);
+            Case c;
+            build(c, p.xyz, p.tris);
+            cbr::recover::RecoveryStats stats;
+            const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+            CHECK_MESSAGE(r.ok, r.why);
+        }
+}
+
+TEST_CASE("splitting: an added point on an open edge (one triangle)" * doctest::may_fail()) {
+    // Open surfaces are legal (cbr.h). A lone triangle whose edge BC is
+    // crossed: its added point has one fan, which does not cut its ball
+    // into two wedges, and split() refuses ("the sub-faces around an added
+    // point do not cut its ball").
+    const cbr::test::Polyhedron p = pierced_triangle(16, true, false);
+    Case c;
+    build(c, p.xyz, p.tris);
+    const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+    REQUIRE(missing.size() == 1);
+    const SplitStats st = conform_and_split(c, missing);
+    CHECK(st.edge_points > 0);
+}
+
+TEST_CASE("triangulate_polygon: a self-crossing loop gets no triangulation" * doctest::may_fail()) {
+    // Edges 2-3 and 4-5 cross at (-1, 1.5); the loop is not simple, yet
+    // triangles (0 1 5) (1 3 5) (3 4 5) (1 2 3) come back for turn +1 (they
+    // overlap: their areas do not add up to the loop's). The header promises
+    // an empty result when the projection folds the polygon. (In split() the
+    // fans are checked not to fold first, so this needs a loop that the fan
+    // check lets through.)
+    const std::vector<P2> loop = {P2{2, -2, 0}, P2{1, 2, 0}, P2{-1, 3, 0}, P2{-1, 1, 0}, P2{0, 3, 0}, P2{-2, 0, 0}};
+    CHECK(triangulate_polygon(ptrs(loop), Projection{0, 1}, +1).empty());
+}
