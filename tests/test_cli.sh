@@ -161,9 +161,9 @@ run_local_outputs() {
     fi
 
     # --json for failed runs too: status, exit code, error; no mesh.
-    expect 3 "could not recover triangle" recover "$tmp/chazelle.off" -o "$tmp/chazelle.mesh" --json "$tmp/chazelle.json" &&
-        no_file "$tmp/chazelle.mesh"
-    json_has "$tmp/chazelle.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
+    expect 3 "could not recover triangle" recover "$tmp/csg-x.off" -o "$tmp/csg-x.mesh" --json "$tmp/csg-x.json" &&
+        no_file "$tmp/csg-x.mesh"
+    json_has "$tmp/csg-x.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
         'd["output"] is None and "could not recover" in d["error"]' \
         'd["table_one"]["missing_faces"] > 0 and d["table_two"] is None and d["mesh"] is None'
     expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh" --json "$tmp/missing.json"
@@ -348,9 +348,9 @@ run_local() {
         "0 2 1;3 4 5;0 1 4;0 4 3;1 2 5;1 5 4;2 0 3;2 3 5"
     expect 0 "" recover "$tmp/prism.off" -o "$tmp/prism.mesh" --json "$tmp/prism.json"
     json_has "$tmp/prism.json" 'd["status"] == "ok" and d["table_one"]["steiner_remaining"] >= 1'
-    # Chazelle's polyhedron defeats point splitting today: a clean failure.
-    cp "$io_data/chazelle.off" "$tmp/chazelle.off"
-    expect 3 "could not recover triangle" recover "$tmp/chazelle.off" -o "$tmp/chazelle.mesh" && no_file "$tmp/chazelle.mesh"
+    # A CSG cross (wildmeshing/data) defeats point splitting today: a clean failure.
+    cp "$io_data/csg-x.off" "$tmp/csg-x.off"
+    expect 3 "could not recover triangle" recover "$tmp/csg-x.off" -o "$tmp/csg-x.mesh" && no_file "$tmp/csg-x.mesh"
 
     run_local_outputs "${2:-}"
 }

@@ -30,7 +30,7 @@ const std::set<std::string> kRecovered = {
     "thingi10k-100071", "thingi10k-37322", "thingicsg-openscad-example012", "thingicsg-openscad-example016",
     "thingicsg-sprocket-small", "thingicsg-sprocket", "thingicsg-t1-torus-quads", "thingiverse-bird",
     "thingiverse-golf-ball", "wildmeshing-armadillo", "wildmeshing-blub", "wildmeshing-csg-ball",
-    "wildmeshing-sphere", "wildmeshing-supershape"};
+    "wildmeshing-sphere", "wildmeshing-supershape", "wildmeshing-upsampled-box"};
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -92,12 +93,15 @@ struct OffSurface {
     std::vector<std::int64_t> tris;
 };
 
-// Reads the shared data's OFF files (triangles only, no comments).
+// Reads the shared data's OFF files (triangles only; '#' comment lines
+// right after the OFF line, as in tests/data/io).
 inline bool read_off(const std::string& path, OffSurface& s) {
     std::ifstream in(path);
     std::string magic;
     std::size_t nv = 0, nf = 0, ne = 0;
-    if (!(in >> magic >> nv >> nf >> ne) || magic != "OFF") return false;
+    if (!(in >> magic) || magic != "OFF") return false;
+    while (in >> std::ws && in.peek() == '#') in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    if (!(in >> nv >> nf >> ne)) return false;
     s.xyz.resize(3 * nv);
     for (double& c : s.xyz)
         if (!(in >> c)) return false;

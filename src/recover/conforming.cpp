@@ -4,6 +4,7 @@
 #include <array>
 #include <map>
 #include <set>
+#include <unordered_set>
 
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
@@ -212,14 +213,20 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
     std::copy_n(m_.point(tri[0]), 3, A);
     std::copy_n(m_.point(tri[1]), 3, B);
     std::copy_n(m_.point(tri[2]), 3, C);
+    // Points whose balls are still to be searched, each queued once.
     std::vector<VertexId> work;
+    std::unordered_set<VertexId> queued;
+    const auto queue = [&](VertexId v) {
+        if (queued.insert(v).second) work.push_back(v);
+    };
     for (int k = 0; k < 3; ++k)
-        for (VertexId v : points_.chain(tri[k], tri[(k + 1) % 3])) work.push_back(v);
+        for (VertexId v : points_.chain(tri[k], tri[(k + 1) % 3])) queue(v);
     std::vector<TetId> ball;
     std::size_t inserted = 0;
     while (!work.empty()) {
         const VertexId v = work.back();
         work.pop_back();
+        queued.erase(v);
         if (!mesh::ball(m_, v, incident_[v], ball)) return fail("a point of the face lost its ball");
         bool found = false;
         VertexId u = 0, w = 0;
@@ -248,15 +255,17 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
         const VertexId p = insert(xyz, s.tets);
         if (p == kGhostVertex) return false;
         points_.add_face_point(p, face);
-        work.push_back(v);
-        work.push_back(p);
-        // Balls the insertion changed.
+        if (edge_exists(u, w)) return fail("an intersection point did not cut the edge it was put on");
+        // Balls the insertion changed: p's, and those of the points of the
+        // face around it (v among them).
+        queue(v);
+        queue(p);
         std::vector<TetId> star;
         if (mesh::ball(m_, p, incident_[p], star))
             for (TetId t : star)
                 for (int i = 0; i < 4; ++i) {
                     const VertexId x = m_.vertex(t, i);
-                    if (x != kGhostVertex && x != p && points_.belongs_to(x, face)) work.push_back(x);
+                    if (x != kGhostVertex && x != p && points_.belongs_to(x, face)) queue(x);
                 }
     }
     return true;

@@ -30,6 +30,8 @@ constexpr int kRemovalDepth = 2;
 // (those that need Steiner points) fail fast instead of exploring every
 // nested removal.
 constexpr int kRemovalBudgetPerFace = 100;
+// Passes over the faces still missing (recover_by_flips).
+constexpr int kMaxPasses = 3;
 
 std::uint64_t edge_key(VertexId a, VertexId b) {
     if (a > b) std::swap(a, b);
@@ -188,8 +190,11 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     FlipRecovery flips(m, faces);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: repeat while a
-    // pass makes progress.
-    for (bool progress = true; progress && !left.empty();) {
+    // pass makes progress, a few times (the faces flips cannot recover
+    // would spend their whole removal budget again on every pass; point
+    // splitting recovers them anyway).
+    bool progress = true;
+    for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
         progress = false;
         std::vector<std::size_t> still;
         for (std::size_t i : left) {

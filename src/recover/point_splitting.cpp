@@ -335,7 +335,7 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
     const mesh::ReplaceResult r = mesh::replace_tets(m_, old, fresh, &created);
     if (r != mesh::ReplaceResult::kDone) {
         m_.truncate_vertices(before);
-        return fail(std::string("splitting an added point: ") + mesh::to_string(r));
+        return fail(std::string("the new tetrahedra were refused: ") + mesh::to_string(r));
     }
     if (incident_.size() < m_.vertex_count()) incident_.resize(m_.vertex_count(), kNoTet);
     for (TetId t : created)

@@ -212,27 +212,29 @@ void Cavity::remove(TetId t) {
 }
 
 // One sweep of §5.1 step 2 over the boundary faces: Det > 0 keep; Det < 0
-// drop the cavity tetrahedron; Det = 0 take in the one beyond (unless the
+// drop the cavity tetrahedron; Det = 0 — or a cone flat to within rounding
+// (nearly_flat), whatever its sign — take in the one beyond (unless the
 // face is protected, or that tetrahedron was rejected or would enclose a
-// protected face: then drop the cavity tetrahedron instead).
+// protected face: then keep the face if Det > 0, else drop the cavity
+// tetrahedron).
 Pass Cavity::correction_pass() {
     bool changed = false;
     for (const Face& b : boundary()) {
         const TetId n = across(b.t, b.f);
         if (!in(b.t) || in(n)) continue;  // changed earlier in this sweep
         const int s = face_sign(b.t, b.f);
-        if (s > 0 && !(nearly_flat(b.t, b.f) && can_take_in(b.t, b.f, n))) continue;
+        // Coplanar, or flat to within rounding (either sign): take in the
+        // tetrahedron beyond if it may join; else a visible face stays.
+        const bool flat = s == 0 || nearly_flat(b.t, b.f);
+        if (s > 0 && !flat) continue;
+        if (flat && can_take_in(b.t, b.f, n)) {
+            in_.insert(n);
+            ++added_;
+            changed = true;
+            continue;
+        }
+        if (s > 0) continue;
         changed = true;
-        if (s > 0) {
-            in_.insert(n);
-            ++added_;
-            continue;
-        }
-        if (s == 0 && can_take_in(b.t, b.f, n)) {
-            in_.insert(n);
-            ++added_;
-            continue;
-        }
         if (b.t == start_) return Pass::kStartLost;
         remove(b.t);
     }

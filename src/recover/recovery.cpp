@@ -68,7 +68,9 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
         // them (the recovered faces are marked, so no change can lose one),
         // the others moved to where their tetrahedra are best.
         suppress_vertices(m, result.steiner);
-        reposition_steiner_points(m, result.steiner, faces);
+        RepositionOptions reposition;
+        reposition.all_faces_present = missing.empty();
+        reposition_steiner_points(m, result.steiner, faces, reposition);
     }
     mesh::compact_vertices_from(m, input_vertices, result.steiner);
     stats.steiner_remaining = result.steiner.size();

@@ -157,7 +157,7 @@ double ball_min_quality(const TetMesh& m, VertexId v, TetId start, const Constra
 bool reposition_vertex(TetMesh& m, VertexId v, TetId start, const ConstraintFaces& faces,
                        const RepositionOptions& options, double* before, double* after) {
     Ball b;
-    if (v == kGhostVertex || gather(m, v, start, faces, b, true) != BallStatus::kOk || b.faces.empty()) return false;
+    if (v == kGhostVertex || gather(m, v, start, faces, b, !options.all_faces_present) != BallStatus::kOk || b.faces.empty()) return false;
     Point cur = {m.point(v)[0], m.point(v)[1], m.point(v)[2]};
     std::size_t worst = 0;
     double q = min_quality(m, b, cur.data(), &worst);

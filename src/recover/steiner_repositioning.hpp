@@ -32,6 +32,10 @@ struct RepositionOptions {
     int rounds = 8;     // search rounds per point and pass
     int halvings = 24;  // step lengths 1, 1/2, ..., 2^-halvings toward each candidate
     int passes = 3;     // passes over all the points, repeated while one moves (a neighbour may free another)
+    // Every input triangle is a face of the mesh already (the end of
+    // recovery): a point kept strictly inside its ball can then meet none
+    // but those on the ball's boundary, so the others are not searched.
+    bool all_faces_present = false;
 };
 
 struct RepositionStats {

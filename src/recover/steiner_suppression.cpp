@@ -231,9 +231,10 @@ bool flip_link_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball0, std
 }
 
 // Puts the original tetrahedra back into the region (exact inverse).
-void rollback(TetMesh& m, const std::set<TetId>& region, const std::vector<Tet>& original) {
+void rollback(TetMesh& m, const std::set<TetId>& region, const std::vector<Tet>& original,
+              std::vector<TetId>* created) {
     const std::vector<TetId> now(region.begin(), region.end());
-    if (mesh::replace_tets(m, now, original) != mesh::ReplaceResult::kDone)
+    if (mesh::replace_tets(m, now, original, created) != mesh::ReplaceResult::kDone)
         throw InternalError("steiner suppression: rollback of the ball refused");
 }
 
@@ -313,7 +314,7 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     } else if (options.flips) {
         done = flip_down(m, v, region, options, rep);
         if (done) rep.method = SuppressMethod::kFlips;
-        else if (rep.flips > 0) rollback(m, region, original);
+        else if (rep.flips > 0) rollback(m, region, original, &rep.created);
     }
     if (!done) {
         rep.result = SuppressResult::kNoRetriangulation;
@@ -367,8 +368,10 @@ std::size_t suppress_vertices(TetMesh& m, std::vector<VertexId>& steiner, const 
                 default: ++st.kept_no_retriangulation; break;
             }
             // A refused attempt may have moved the ball's slots (flips
-            // undone, rollback): refresh the starts of the region.
-            if (rep.flips > 0) start = mesh::incident_tets(m);
+            // undone, rollback): the restored tetrahedra are in rep.created.
+            for (TetId k : rep.created)
+                for (int i = 0; i < 4; ++i)
+                    if (m.vertex(k, i) != kGhostVertex) start[m.vertex(k, i)] = k;
         }
         steiner.swap(kept);
     }

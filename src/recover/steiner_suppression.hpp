@@ -60,7 +60,9 @@ struct SuppressReport {
     std::size_t link_flips = 0;        // 2-3 flips of faces at v, kept
     std::size_t flips_undone = 0;      // 2-3 flips undone at once (the look-ahead found no edge removal)
     double min_quality = 0;            // on success: worst tet_quality of the new tetrahedra
-    std::vector<mesh::TetId> created;  // on success: the tetrahedra that now fill the old ball
+    // On success: the tetrahedra that now fill the old ball; on a refusal
+    // after flips: the original tetrahedra put back (their slots may differ).
+    std::vector<mesh::TetId> created;
 };
 
 // Removes vertex v from m (Ball(v) retetrahedralized without it) if it
