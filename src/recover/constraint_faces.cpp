@@ -1,7 +1,6 @@
 #include "recover/constraint_faces.hpp"
 
 #include <algorithm>
-#include <unordered_set>
 
 namespace cbr::recover {
 namespace {
@@ -14,32 +13,40 @@ Triangle sorted(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) {
 
 }  // namespace
 
-std::size_t ConstraintFaces::KeyHash::operator()(const Triangle& k) const {
-    std::uint64_t h = k[0];
-    h = h * 0x9E3779B97F4A7C15ull + k[1];
-    h = h * 0x9E3779B97F4A7C15ull + k[2];
-    return static_cast<std::size_t>(h ^ (h >> 29));
-}
-
 ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<std::int32_t> labels)
     : triangles_(std::move(triangles)), labels_(std::move(labels)) {
     labels_.resize(triangles_.size(), 0);
-    index_.reserve(triangles_.size());
+    std::size_t n = 0;
+    for (const Triangle& t : triangles_) n = std::max<std::size_t>(n, std::max({t[0], t[1], t[2]}) + std::size_t{1});
+    first_.assign(n + 1, 0);
+    for (const Triangle& t : triangles_) ++first_[std::min({t[0], t[1], t[2]}) + 1];
+    for (std::size_t v = 0; v < n; ++v) first_[v + 1] += first_[v];
+    entries_.resize(triangles_.size());
+    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
-        const Triangle& t = triangles_[i];
-        index_.emplace(sorted(t[0], t[1], t[2]), static_cast<std::uint32_t>(i));
+        const Triangle k = sorted(triangles_[i][0], triangles_[i][1], triangles_[i][2]);
+        entries_[fill[k[0]]++] = Entry{k[1], k[2], static_cast<std::uint32_t>(i)};
     }
 }
 
 std::size_t ConstraintFaces::find(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) const {
-    const auto it = index_.find(sorted(a, b, c));
-    return it == index_.end() ? npos : it->second;
+    const Triangle k = sorted(a, b, c);
+    if (std::size_t{k[0]} + 1 >= first_.size()) return npos;
+    for (std::uint32_t e = first_[k[0]]; e < first_[k[0] + 1]; ++e)
+        if (entries_[e].middle == k[1] && entries_[e].largest == k[2]) return entries_[e].index;
+    return npos;
 }
 
 std::size_t ConstraintFaces::vertex_count() const {
-    std::unordered_set<mesh::VertexId> used;
-    for (const Triangle& t : triangles_) used.insert(t.begin(), t.end());
-    return used.size();
+    std::vector<char> used(first_.empty() ? 0 : first_.size() - 1, 0);
+    std::size_t count = 0;
+    for (const Triangle& t : triangles_)
+        for (mesh::VertexId v : t)
+            if (!used[v]) {
+                used[v] = 1;
+                ++count;
+            }
+    return count;
 }
 
 std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces) {

@@ -4,7 +4,6 @@
 
 #include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -31,12 +30,20 @@ public:
     std::size_t vertex_count() const;
 
 private:
-    struct KeyHash {
-        std::size_t operator()(const Triangle& k) const;
+    // Lookup by smallest vertex: the triangles whose smallest vertex is x
+    // are entries [first_[x], first_[x + 1]), as (middle, largest, index).
+    // Two per vertex on average, and mesh faces met in storage order have
+    // nearby vertex ids (the points are inserted along a Hilbert curve), so
+    // the lookup of every mesh face (mark_present_faces, the hot loop) stays
+    // in cache, where a hash table would miss on nearly every face.
+    struct Entry {
+        mesh::VertexId middle, largest;
+        std::uint32_t index;
     };
     std::vector<Triangle> triangles_;
     std::vector<std::int32_t> labels_;
-    std::unordered_map<Triangle, std::uint32_t, KeyHash> index_;  // sorted vertices -> triangle
+    std::vector<std::uint32_t> first_;
+    std::vector<Entry> entries_;
 };
 
 // Marks, on both sides, every mesh face that is an input triangle as a

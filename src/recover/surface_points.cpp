@@ -15,10 +15,7 @@ SurfacePoints::SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_co
     std::vector<std::uint32_t> fill(corner_first_.begin(), corner_first_.end() - 1);
     for (std::size_t i = 0; i < faces_.size(); ++i) {
         const Triangle& t = faces_.triangle(i);
-        for (int k = 0; k < 3; ++k) {
-            corner_faces_[fill[t[k]]++] = static_cast<std::uint32_t>(i);
-            edge_faces_[edge_key(t[k], t[(k + 1) % 3])].push_back(static_cast<std::uint32_t>(i));
-        }
+        for (int k = 0; k < 3; ++k) corner_faces_[fill[t[k]]++] = static_cast<std::uint32_t>(i);
     }
 }
 
@@ -81,10 +78,15 @@ std::size_t SurfacePoints::common_face(VertexId x, VertexId y, VertexId z) const
     return npos;
 }
 
-const std::vector<std::uint32_t>& SurfacePoints::faces_of_edge(VertexId a, VertexId b) const {
-    static const std::vector<std::uint32_t> kNone;
-    const auto it = edge_faces_.find(edge_key(a, b));
-    return it == edge_faces_.end() ? kNone : it->second;
+std::vector<std::uint32_t> SurfacePoints::faces_of_edge(VertexId a, VertexId b) const {
+    // The triangles at a that also have b: a's umbrella is short.
+    std::vector<std::uint32_t> out;
+    if (a + 1 >= corner_first_.size()) return out;
+    for (std::uint32_t k = corner_first_[a]; k < corner_first_[a + 1]; ++k) {
+        const Triangle& t = faces_.triangle(corner_faces_[k]);
+        if (t[0] == b || t[1] == b || t[2] == b) out.push_back(corner_faces_[k]);
+    }
+    return out;
 }
 
 std::vector<VertexId> SurfacePoints::chain(VertexId a, VertexId b) const {

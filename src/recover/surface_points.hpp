@@ -47,7 +47,7 @@ public:
         return common_face(x, y, z) != npos;
     }
     // Input triangles with edge ab.
-    const std::vector<std::uint32_t>& faces_of_edge(mesh::VertexId a, mesh::VertexId b) const;
+    std::vector<std::uint32_t> faces_of_edge(mesh::VertexId a, mesh::VertexId b) const;
 
     // The chain of mesh edges that represents input edge ab once it is
     // recovered in a conforming manner (a first, b last); empty if not yet.
@@ -72,7 +72,6 @@ private:
 
     const ConstraintFaces& faces_;
     std::vector<std::uint32_t> corner_first_, corner_faces_;  // vertex -> triangles (CSR)
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces_;
     std::unordered_map<mesh::VertexId, Added> added_;
     std::unordered_map<std::uint64_t, std::vector<mesh::VertexId>> chains_;  // stored from min id to max id
     std::vector<mesh::VertexId> order_;
