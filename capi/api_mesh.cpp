@@ -83,6 +83,31 @@ CBR_API int cbr_mesh_set_param(cbr_mesh* mesh, int key, double value) {
                         "CBR_PARAM_KEEP_EXTERIOR must be 0 or 1");
                 mesh->keep_exterior = value != 0.0;
                 return CBR_OK;
+            case CBR_PARAM_REFINE_SIZE:
+                require(value == 0.0 || (std::isfinite(value) && value > 0), CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_REFINE_SIZE must be 0 (from the surface) or finite and > 0");
+                mesh->refine_options.target_size = value;
+                return CBR_OK;
+            case CBR_PARAM_REFINE_GRADING:
+                require(value >= 0.01 && value <= 100, CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_REFINE_GRADING must be within [0.01, 100]");
+                mesh->refine_options.grading = value;
+                return CBR_OK;
+            case CBR_PARAM_REFINE_QUALITY_BOUND:
+                require(value >= 1 && value <= 1000, CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_REFINE_QUALITY_BOUND must be within [1, 1000]");
+                mesh->refine_options.quality_bound = value;
+                return CBR_OK;
+            case CBR_PARAM_REFINE_PASSES:
+                require(value >= 0 && value <= 100 && value == std::floor(value), CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_REFINE_PASSES must be an integer within [0, 100]");
+                mesh->refine_options.optimisation_passes = static_cast<int>(value);
+                return CBR_OK;
+            case CBR_PARAM_REFINE_SIZE_FROM_SURFACE:
+                require(value == 0.0 || value == 1.0, CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_REFINE_SIZE_FROM_SURFACE must be 0 or 1");
+                mesh->refine_options.size_from_surface = value != 0.0;
+                return CBR_OK;
             default:
                 throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
@@ -96,6 +121,13 @@ CBR_API int cbr_mesh_get_param(const cbr_mesh* mesh, int key, double* value) {
         switch (key) {
             case CBR_PARAM_INDEX_BASE: *value = mesh->index_base; return CBR_OK;
             case CBR_PARAM_KEEP_EXTERIOR: *value = mesh->keep_exterior ? 1.0 : 0.0; return CBR_OK;
+            case CBR_PARAM_REFINE_SIZE: *value = mesh->refine_options.target_size; return CBR_OK;
+            case CBR_PARAM_REFINE_GRADING: *value = mesh->refine_options.grading; return CBR_OK;
+            case CBR_PARAM_REFINE_QUALITY_BOUND: *value = mesh->refine_options.quality_bound; return CBR_OK;
+            case CBR_PARAM_REFINE_PASSES: *value = mesh->refine_options.optimisation_passes; return CBR_OK;
+            case CBR_PARAM_REFINE_SIZE_FROM_SURFACE:
+                *value = mesh->refine_options.size_from_surface ? 1.0 : 0.0;
+                return CBR_OK;
             default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
     });

@@ -2,6 +2,7 @@
 // its results (Steiner points, regions, Table I statistics).
 #include <cbr/cbr.h>
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -37,6 +38,29 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
     std::vector<std::int32_t> label_list;
     if (labels) label_list.assign(labels, labels + count);
     return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
+}
+
+// CBR_STAT_STEINER_INSIDE: the distinct Steiner points that some tetrahedron
+// of a bounded region (region > 0) uses; 0 before recovery.
+std::size_t steiner_inside(const cbr_mesh& h) {
+    const cbr::capi::RecoveryState& r = h.recovery;
+    if (!r.done || r.steiner.empty()) return 0;
+    const cbr::mesh::TetMesh& m = h.delaunay.mesh();
+    const cbr::mesh::VertexId top = *std::max_element(r.steiner.begin(), r.steiner.end());
+    std::vector<char> mark(static_cast<std::size_t>(top) + 1, 0);  // 1: Steiner, 2: counted
+    for (cbr::mesh::VertexId v : r.steiner) mark[v] = 1;
+    std::size_t n = 0;
+    for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t) || r.regions.of_tet[t] <= 0) continue;
+        for (int i = 0; i < 4; ++i) {
+            const cbr::mesh::VertexId v = m.vertex(t, i);
+            if (v <= top && mark[v] == 1) {
+                mark[v] = 2;
+                ++n;
+            }
+        }
+    }
+    return n;
 }
 
 }  // namespace
@@ -131,7 +155,10 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh* mesh, int key, double* value) {
             case CBR_STAT_RECOVERY_SECONDS: *value = r.seconds; break;
             case CBR_STAT_TOTAL_SECONDS: *value = mesh->delaunay_seconds + r.seconds; break;
             case CBR_STAT_REGION_COUNT: *value = r.done ? r.regions.count : 0; break;
-            default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown statistic key " + std::to_string(key)};
+            case CBR_STAT_STEINER_INSIDE: *value = count(steiner_inside(*mesh)); break;
+            default:
+                if (cbr::capi::refine_stat(*mesh, key, *value)) break;
+                throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown statistic key " + std::to_string(key)};
         }
         return CBR_OK;
     });

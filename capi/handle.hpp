@@ -14,6 +14,8 @@
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
 #include "recover/surface_check.hpp"
+#include "refine/quality_stats.hpp"
+#include "refine/refine_options.hpp"
 
 namespace cbr::capi {
 
@@ -27,6 +29,18 @@ struct RecoveryState {
     std::vector<cbr::mesh::VertexId> steiner;  // internal ids
 };
 
+// What cbr_mesh_refine leaves behind (its options live in the handle).
+struct RefineState {
+    bool done = false;
+    cbr::refine::RefineStats stats;
+    cbr::refine::QualityTable quality;
+    double seconds = 0;
+};
+
+// Serves the CBR_STAT_* keys of refinement (api_refine.cpp); false for a
+// key that is not one of them.
+bool refine_stat(const cbr_mesh& mesh, int key, double& value);
+
 }  // namespace cbr::capi
 
 struct cbr_mesh {
@@ -35,6 +49,8 @@ struct cbr_mesh {
     bool keep_exterior = false;
     double delaunay_seconds = 0;
     cbr::capi::RecoveryState recovery;
+    cbr::refine::RefineOptions refine_options;
+    cbr::capi::RefineState refine;
     // Report of the last cbr_mesh_check_faces that ran its checks (whatever
     // it found); ids 0-based. A call refused on its arguments keeps it.
     cbr::recover::SurfaceCheckResult last_check;

@@ -157,3 +157,50 @@ TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any c
     CHECK(cbr_mesh_get_stat(h.m, 999, &v) == CBR_ERR_INVALID_ARGUMENT);
     CHECK(cbr_mesh_get_stat(h.m, CBR_STAT_MISSING_FACES, nullptr) == CBR_ERR_INVALID_ARGUMENT);
 }
+
+TEST_CASE("CBR_STAT_STEINER_INSIDE counts the Steiner points of the bounded regions") {
+    // Schonhardt's prism needs a Steiner point; those of the exterior are
+    // dropped with it, so only the ones the caller's mesh uses count.
+    const cbr::test::Polyhedron p = cbr::test::schonhardt_prism();
+    Handle h;
+    REQUIRE(cbr_mesh_insert_points(h.m, static_cast<std::int64_t>(p.xyz.size() / 3), p.xyz.data()) == CBR_OK);
+    CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) == 0);  // before recovery
+    REQUIRE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(), nullptr) ==
+            CBR_OK);
+    const double inside = stat(h.m, CBR_STAT_STEINER_INSIDE);
+    CHECK(inside >= 1);
+    CHECK(inside <= stat(h.m, CBR_STAT_STEINER_REMAINING));
+
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(cbr_mesh_steiner_count(h.m)));
+    REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
+    const std::set<std::int64_t> steiner(ids.begin(), ids.end());
+    // Distinct Steiner ids among the tetrahedra (those of regions > 0 only
+    // when bounded_only).
+    const auto used = [&](const std::vector<std::int64_t>& tets, const std::vector<std::int32_t>& regions,
+                          bool bounded_only) {
+        std::set<std::int64_t> seen;
+        for (std::size_t t = 0; t < regions.size(); ++t) {
+            if (bounded_only && regions[t] <= 0) continue;
+            for (std::size_t i = 4 * t; i < 4 * t + 4; ++i)
+                if (steiner.count(tets[i])) seen.insert(tets[i]);
+        }
+        return static_cast<double>(seen.size());
+    };
+    const auto regions_of = [&] {
+        std::vector<std::int32_t> r(static_cast<std::size_t>(cbr_mesh_tet_count(h.m)));
+        REQUIRE(cbr_mesh_get_tet_regions(h.m, r.data()) == CBR_OK);
+        return r;
+    };
+
+    // By default cbr_mesh_get_tets returns the bounded regions only.
+    const auto bounded = tets_of(h.m);
+    CHECK(used(bounded, regions_of(), false) == inside);
+
+    // With the exterior kept: the tetrahedra of regions > 0 give the same.
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
+    const auto all = tets_of(h.m);
+    const auto regions = regions_of();
+    REQUIRE(all.size() / 4 == regions.size());
+    CHECK(used(all, regions, true) == inside);
+    CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) == inside);  // independent of the parameter
+}

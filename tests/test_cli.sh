@@ -212,10 +212,28 @@ run_local_outputs() {
     expect 4 "unknown output format" demo -o "$tmp/demo.xyz"
     expect 1 "unknown argument 'x'" demo x
 
-    # cbr mesh: not available yet; exit 1 (documented), nothing written.
-    expect 0 "" mesh --help && report_has "NOT AVAILABLE YET" && report_has "cbr mesh IN -o OUT \[--size H\]"
-    expect 1 "^cbr mesh: full mesh generation is not available yet in libcbr [0-9]+\.[0-9]+\.[0-9]+ \(see cbr recover\)$" \
-        mesh "$tmp/cube.off" -o "$tmp/cube-mesh.mesh" --size 0.1 && no_file "$tmp/cube-mesh.mesh"
+    # cbr mesh: recovery then full mesh generation; the tables and --json
+    # of cbr recover, plus the refinement counts; exit 3 when recovery fails.
+    expect 0 "" mesh --help && report_has "cbr mesh IN -o OUT \[--size H\]" && report_has "--size H"
+    expect 0 "" mesh "$tmp/cube.off" -o "$tmp/cube-mesh.mesh" --size 0.25 --json "$tmp/cube-mesh.json" &&
+        report_has "Table I" && report_has "field points inserted" && report_has "Table II"
+    checks=$((checks + 1))
+    [ -s "$tmp/cube-mesh.mesh" ] || fail "cbr mesh wrote no file"
+    json_has "$tmp/cube-mesh.json" 'd["command"] == "mesh" and d["status"] == "ok" and d["mesh"]["points"] > 8' \
+        'd["refine"]["field_points"] == d["mesh"]["points"] - 8 and d["refine"]["seconds"] >= 0' \
+        'd["table_two"]["tetrahedra"] == d["mesh"]["tetrahedra"] and d["table_two"]["quality_min"] > 0'
+    if [ -n "$mesh_info" ]; then
+        checks=$((checks + 1))
+        "$mesh_info" "$tmp/cube-mesh.mesh" "$tmp/cube.off" > "$tmp/info" 2>&1 ||
+            fail "cube-mesh.mesh read back: $(cat "$tmp/info")"
+    fi
+    # Exit 3 when recovery fails (the CSG cross of tests/data/io fails today).
+    expect 3 "could not recover triangle" mesh "$tmp/csg-x.off" -o "$tmp/csg-x-mesh.mesh" --json "$tmp/csg-x-mesh.json" &&
+        no_file "$tmp/csg-x-mesh.mesh"
+    json_has "$tmp/csg-x-mesh.json" 'd["command"] == "mesh" and d["status"] == "recovery_failed" and d["refine"] is None'
+    expect 1 "--size needs a finite length > 0, not '-1'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size -1
+    expect 1 "--size needs a length" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size
+    expect 1 "no output file" mesh "$tmp/cube.off"
     expect 0 "" --help && report_has "mesh IN -o OUT" && report_has "demo \[-o OUT\]"
 
     # Real tools, when installed: gmsh opens .msh and .mesh, meshio reads
@@ -346,8 +364,10 @@ run_local() {
     # and a Steiner point must stay (no tetrahedralization without one).
     off prism "1 0 0;-0.5 0.8660254037844386 0;-0.5 -0.8660254037844386 0;0.8660254037844387 0.5 1;-0.8660254037844387 0.5 1;0 -1 1" \
         "0 2 1;3 4 5;0 1 4;0 4 3;1 2 5;1 5 4;2 0 3;2 3 5"
-    expect 0 "" recover "$tmp/prism.off" -o "$tmp/prism.mesh" --json "$tmp/prism.json"
-    json_has "$tmp/prism.json" 'd["status"] == "ok" and d["table_one"]["steiner_remaining"] >= 1'
+    expect 0 "" recover "$tmp/prism.off" -o "$tmp/prism.mesh" --json "$tmp/prism.json" &&
+        report_has "^  Steiner points inside the domain    +[1-9][0-9]*\$"
+    json_has "$tmp/prism.json" 'd["status"] == "ok" and d["table_one"]["steiner_remaining"] >= 1' \
+        '1 <= d["table_one"]["steiner_inside"] <= d["table_one"]["steiner_remaining"]'
     # A CSG cross (wildmeshing/data) defeats point splitting today: a clean failure.
     cp "$io_data/csg-x.off" "$tmp/csg-x.off"
     expect 3 "could not recover triangle" recover "$tmp/csg-x.off" -o "$tmp/csg-x.mesh" && no_file "$tmp/csg-x.mesh"

@@ -91,6 +91,11 @@ module cbr
   ! Parameter keys for cbr_mesh_set_param / cbr_mesh_get_param.
   integer(c_int), parameter, public :: CBR_PARAM_INDEX_BASE = 1
   integer(c_int), parameter, public :: CBR_PARAM_KEEP_EXTERIOR = 2
+  integer(c_int), parameter, public :: CBR_PARAM_REFINE_SIZE = 3
+  integer(c_int), parameter, public :: CBR_PARAM_REFINE_GRADING = 4
+  integer(c_int), parameter, public :: CBR_PARAM_REFINE_QUALITY_BOUND = 5
+  integer(c_int), parameter, public :: CBR_PARAM_REFINE_PASSES = 6
+  integer(c_int), parameter, public :: CBR_PARAM_REFINE_SIZE_FROM_SURFACE = 7
 
   ! Defect kinds of cbr_mesh_check_faces (cbr_mesh_defect_count, ...).
   integer(c_int), parameter, public :: CBR_DEFECT_ID_OUT_OF_RANGE = 1
@@ -113,6 +118,19 @@ module cbr
   integer(c_int), parameter, public :: CBR_STAT_RECOVERY_SECONDS = 9
   integer(c_int), parameter, public :: CBR_STAT_TOTAL_SECONDS = 10
   integer(c_int), parameter, public :: CBR_STAT_REGION_COUNT = 11
+  integer(c_int), parameter, public :: CBR_STAT_STEINER_INSIDE = 12
+  ! After cbr_mesh_refine: the paper's Table II and refinement counts.
+  integer(c_int), parameter, public :: CBR_STAT_QUALITY_AVERAGE = 20
+  integer(c_int), parameter, public :: CBR_STAT_QUALITY_MIN = 21
+  integer(c_int), parameter, public :: CBR_STAT_PERCENT_ABOVE_0_4 = 22
+  integer(c_int), parameter, public :: CBR_STAT_PERCENT_BELOW_0_1 = 23
+  integer(c_int), parameter, public :: CBR_STAT_BAD_TOUCHING_STEINER = 24
+  integer(c_int), parameter, public :: CBR_STAT_DIHEDRAL_MIN = 25
+  integer(c_int), parameter, public :: CBR_STAT_DIHEDRAL_MAX = 26
+  integer(c_int), parameter, public :: CBR_STAT_FIELD_POINTS = 27
+  integer(c_int), parameter, public :: CBR_STAT_REFINE_FLIPS = 28
+  integer(c_int), parameter, public :: CBR_STAT_REFINE_SECONDS = 29
+  integer(c_int), parameter, public :: CBR_STAT_REFINE_TETS = 30
 
   ! ---------------------------------------------------------------------
   ! The C functions
@@ -127,6 +145,7 @@ module cbr
   public :: cbr_mesh_defect_listed, cbr_mesh_get_defect
   public :: cbr_mesh_recover_faces, cbr_mesh_steiner_count, cbr_mesh_steiner_points
   public :: cbr_mesh_get_tet_regions, cbr_mesh_get_stat
+  public :: cbr_mesh_refine
 
   ! Fortran helper.
   public :: cbr_f_string
@@ -281,6 +300,14 @@ module cbr
       real(c_double), intent(out) :: value
       integer(c_int) :: status
     end function cbr_mesh_get_stat
+
+    ! int cbr_mesh_refine(cbr_mesh *mesh);
+    function cbr_mesh_refine(mesh) &
+        bind(C, name="cbr_mesh_refine") result(status)
+      import :: c_ptr, c_int
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int) :: status
+    end function cbr_mesh_refine
 
     ! int cbr_mesh_check_faces(cbr_mesh *mesh, int64_t count,
     !                          const int64_t *tris);

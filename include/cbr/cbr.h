@@ -99,6 +99,31 @@ extern "C" {
    cbr_mesh_get_tets return the tetrahedra of the bounded regions only (what
    a solver meshes); 1 returns the exterior (region 0) too. */
 #define CBR_PARAM_KEEP_EXTERIOR 2
+/* Options of cbr_mesh_refine (full mesh generation, the paper's section 6).
+   They are read when cbr_mesh_refine runs. */
+/* Target edge length H of the tetrahedra: 0 (default) = the sizing field
+   derived from the surface (at each surface vertex the mean length of its
+   input edges, interpolated inside); H > 0 = the smaller of H and the
+   surface field, or H alone when CBR_PARAM_REFINE_SIZE_FROM_SURFACE is 0.
+   Range: 0, or finite and > 0. */
+#define CBR_PARAM_REFINE_SIZE 3
+/* Size grading g: the sizing field is made to vary by at most g per unit
+   length along the mesh edges, h(v) <= h(u) + g |uv|. Default 0.5; range
+   [0.01, 100]. */
+#define CBR_PARAM_REFINE_GRADING 4
+/* Quality bound B: a tetrahedron whose circumradius exceeds B times its
+   shortest edge (radius-edge ratio, TetGen's -q) gets a point at its
+   circumcentre when that point is inside its region and not too close to
+   the surface. Default 1.414; range [1, 1000]. */
+#define CBR_PARAM_REFINE_QUALITY_BOUND 5
+/* Optimisation passes after the insertion of points (each: quality flips,
+   then smoothing of the non-input interior points); 0 = no optimisation.
+   Default 3; an integer in [0, 100]. */
+#define CBR_PARAM_REFINE_PASSES 6
+/* 1 (default): the sizing field uses the surface (see
+   CBR_PARAM_REFINE_SIZE); 0: H alone (CBR_PARAM_REFINE_SIZE must then be
+   > 0 when cbr_mesh_refine runs). 0 or 1. */
+#define CBR_PARAM_REFINE_SIZE_FROM_SURFACE 7
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */
@@ -211,6 +236,27 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
 #define CBR_STAT_RECOVERY_SECONDS 9
 #define CBR_STAT_TOTAL_SECONDS 10
 #define CBR_STAT_REGION_COUNT 11           /* regions, the exterior (region 0) included */
+/* Steiner points that are vertices of tetrahedra of bounded regions
+   (region > 0): those the caller's mesh contains. CBR_STAT_STEINER_REMAINING
+   also counts the Steiner points of the exterior (region 0), which
+   cbr_mesh_get_tets drops unless CBR_PARAM_KEEP_EXTERIOR is set. The
+   paper's Table I counts the points inside the domain. */
+#define CBR_STAT_STEINER_INSIDE 12
+/* Keys 13-19 are reserved for recovery. After cbr_mesh_refine (0 before),
+   over the tetrahedra of the bounded regions: the rows of the paper's
+   Table II, with the quality q = 3 r_in / r_circ (radius ratio, 1 for the
+   regular tetrahedron, 0 for a flat one). */
+#define CBR_STAT_QUALITY_AVERAGE 20
+#define CBR_STAT_QUALITY_MIN 21
+#define CBR_STAT_PERCENT_ABOVE_0_4 22      /* % of tetrahedra with q > 0.4 */
+#define CBR_STAT_PERCENT_BELOW_0_1 23      /* % of tetrahedra with q < 0.1 */
+#define CBR_STAT_BAD_TOUCHING_STEINER 24   /* tetrahedra with q < 0.1 and a Steiner corner */
+#define CBR_STAT_DIHEDRAL_MIN 25           /* degrees */
+#define CBR_STAT_DIHEDRAL_MAX 26           /* degrees */
+#define CBR_STAT_FIELD_POINTS 27           /* points inserted by cbr_mesh_refine */
+#define CBR_STAT_REFINE_FLIPS 28           /* quality flips done by cbr_mesh_refine */
+#define CBR_STAT_REFINE_SECONDS 29
+#define CBR_STAT_REFINE_TETS 30            /* tetrahedra of the bounded regions after refinement */
 
 /* Recovers the `count` triangles `tris` (3*count point ids, index base as
    set) as faces of the tetrahedralization of the points inserted so far,
@@ -252,6 +298,33 @@ CBR_API int cbr_mesh_get_tet_regions(const cbr_mesh *mesh, int32_t *regions_out)
    that sets it has run. CBR_ERR_INVALID_ARGUMENT for a NULL mesh or value
    or an unknown key. */
 CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
+
+/* ------------------------------------------------------------------------ */
+/* Full mesh generation (Du & Wang 2004, section 6)                         */
+/* ------------------------------------------------------------------------ */
+
+/* Fills the bounded regions of a recovered mesh with points and improves
+   its elements: a sizing field (CBR_PARAM_REFINE_SIZE, _GRADING,
+   _SIZE_FROM_SURFACE), field points inserted until every tetrahedron meets
+   it and the quality bound (CBR_PARAM_REFINE_QUALITY_BOUND), then
+   optimisation passes (CBR_PARAM_REFINE_PASSES: quality flips, smoothing).
+   The surface stays exactly the input: every input triangle stays a face,
+   no point is added on it and no input point moves; the exterior (region
+   0) is not refined; regions keep their numbers. Size bound met on
+   success: every edge of a tetrahedron of a bounded region that is not an
+   input edge is at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing
+   field at its ends. New points get the next ids, after the points
+   inserted so far (and recovery's Steiner points); the Steiner points of
+   recovery may move (smoothing). Statistics: CBR_STAT_QUALITY_AVERAGE ...
+   CBR_STAT_REFINE_TETS. It may be called again (it refines further, with
+   the parameters then set).
+   Errors (the mesh is then unchanged):
+     CBR_ERR_INVALID_ARGUMENT  NULL mesh; cbr_mesh_recover_faces has not
+                               succeeded on this mesh; no size (surface
+                               field off and CBR_PARAM_REFINE_SIZE 0);
+     CBR_ERR_OUT_OF_MEMORY;
+     CBR_ERR_INTERNAL          a check of the result failed (a bug). */
+CBR_API int cbr_mesh_refine(cbr_mesh *mesh);
 
 /* ------------------------------------------------------------------------ */
 /* Surface checks                                                           */

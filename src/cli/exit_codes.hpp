@@ -9,7 +9,7 @@
 namespace cbr::cli {
 
 constexpr int kExitOk = 0;        // success
-constexpr int kExitUsage = 1;     // bad command line, or a command not available yet (cbr mesh)
+constexpr int kExitUsage = 1;     // bad command line
 constexpr int kExitInput = 2;     // invalid input: unparsable file, or a surface that cannot be recovered
 constexpr int kExitRecovery = 3;  // boundary recovery failed
 constexpr int kExitIo = 4;        // a file missing, unreadable, unwritable, or of unknown extension

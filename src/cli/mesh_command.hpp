@@ -1,7 +1,6 @@
 // `cbr mesh IN -o OUT [--size H]`: boundary recovery followed by full mesh
-// generation (interior points, quality improvement). Mesh generation is not
-// in libcbr yet: until it is, the command says so and exits with code 1
-// (usage), as documented in its --help and in README, "The cbr command".
+// generation (Du & Wang 2004, §6: field points, optimisation) through
+// cbr_mesh_refine; the same outputs, tables and --json as cbr recover.
 #pragma once
 
 namespace cbr::cli {

@@ -63,6 +63,22 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
     out.delaunay_tets = delaunay_tets;
     out.has_table_one = true;
     out.table_one = read_table_one(m);
+    if (options.refine) {
+        steps.begin("generating the mesh");
+        status = cbr_mesh_set_param(m, CBR_PARAM_REFINE_SIZE, options.size);
+        if (status == CBR_OK) status = cbr_mesh_refine(m);
+        if (status != CBR_OK) {
+            RecoveryOutcome failed = api_failure(m, status);
+            failed.delaunay_tets = delaunay_tets;
+            failed.has_table_one = true;
+            failed.table_one = out.table_one;
+            return failed;
+        }
+        out.has_refine = true;
+        cbr_mesh_get_stat(m, CBR_STAT_FIELD_POINTS, &out.refine.field_points);
+        cbr_mesh_get_stat(m, CBR_STAT_REFINE_FLIPS, &out.refine.flips);
+        cbr_mesh_get_stat(m, CBR_STAT_REFINE_SECONDS, &out.refine.seconds);
+    }
     steps.begin("measuring quality");
     io::VolumeMesh volume;
     status = collect_volume(m, surface, volume);

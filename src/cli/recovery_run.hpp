@@ -1,5 +1,6 @@
-// What `cbr recover` and `cbr demo` share: a surface in memory through
-// libcbr (Delaunay, boundary recovery), the result collected, its quality
+// What `cbr recover`, `cbr mesh` and `cbr demo` share: a surface in memory
+// through libcbr (Delaunay, boundary recovery, for `cbr mesh` full mesh
+// generation), the result collected, its quality
 // measured (Table II) and, when asked, written. Nothing is printed here:
 // the outcome says what happened, and the command prints it once the
 // progress line is gone.
@@ -21,6 +22,15 @@ struct RecoveryOptions {
     std::string output;  // the volume mesh to write; empty: none
     bool keep_exterior = false;
     bool allow_open = false;  // accept a surface with open edges
+    // `cbr mesh`: after recovery, cbr_mesh_refine (full mesh generation)
+    // with CBR_PARAM_REFINE_SIZE = size (0: from the surface).
+    bool refine = false;
+    double size = 0;
+};
+
+// What cbr_mesh_refine reports (its CBR_STAT_* keys).
+struct RefineSummary {
+    double field_points = 0, flips = 0, seconds = 0;
 };
 
 struct RecoveryOutcome {
@@ -28,7 +38,9 @@ struct RecoveryOutcome {
     std::string error;   // one line for stderr, empty on success
     bool has_table_one = false;  // recovery ran (to the end, or failed on faces)
     TableOne table_one;
-    bool has_quality = false;    // recovery succeeded
+    bool has_refine = false;     // refinement ran and succeeded
+    RefineSummary refine;
+    bool has_quality = false;    // recovery (and refinement, when asked) succeeded
     QualityReport quality;
     std::int64_t delaunay_tets = 0;     // tetrahedra of the Delaunay mesh (all, before recovery)
     std::size_t points = 0, tets = 0;   // of the recovered mesh

@@ -23,6 +23,7 @@ void table_one(JsonWriter& j, const TableOne& t) {
     j.key("conforming_points").integer(count(t.conforming_points));
     j.key("steiner_generated").integer(count(t.steiner_generated));
     j.key("steiner_remaining").integer(count(t.steiner_remaining));
+    j.key("steiner_inside").integer(count(t.steiner_inside));
     j.key("region_count").integer(count(t.region_count));
     j.key("delaunay_seconds").number(t.delaunay_seconds);
     j.key("recovery_seconds").number(t.recovery_seconds);
@@ -89,6 +90,16 @@ std::string run_report_json(const RunDescription& run, const RecoveryOutcome& ou
     j.key("table_one");
     if (outcome.has_table_one) {
         table_one(j, outcome.table_one);
+    } else {
+        j.null();
+    }
+    j.key("refine");
+    if (outcome.has_refine) {
+        j.begin_object();
+        j.key("field_points").integer(count(outcome.refine.field_points));
+        j.key("flips").integer(count(outcome.refine.flips));
+        j.key("seconds").number(outcome.refine.seconds);
+        j.end_object();
     } else {
         j.null();
     }

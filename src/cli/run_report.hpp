@@ -1,4 +1,4 @@
-// The JSON report of a run (`--json FILE` of cbr recover and cbr demo):
+// The JSON report of a run (`--json FILE` of cbr recover, cbr mesh and cbr demo):
 // what was asked, what happened, and the rows of Table I and Table II.
 // Key names are stable (scripts read them); new keys may be added.
 //
@@ -15,9 +15,12 @@
 //     "table_one": {"total_vertices": 8, "boundary_vertices": 8,
 //                   "missing_faces": 4, "recovered_by_flips": 4,
 //                   "conforming_points": 0, "steiner_generated": 0,
-//                   "steiner_remaining": 0, "region_count": 2,
+//                   "steiner_remaining": 0, "steiner_inside": 0,
+//                   "region_count": 2,
 //                   "delaunay_seconds": ..., "recovery_seconds": ...,
 //                   "total_seconds": ...},               null before recovery ran
+//     "refine": {"field_points": ..., "flips": ..., "seconds": ...},
+//                                                        null unless cbr mesh refined
 //     "table_two": {"tetrahedra": 6, "quality_average": ..., "quality_min": ...,
 //                   "percent_above_0_4": ..., "percent_below_0_1": ...,
 //                   "bad_touching_steiner": 0, "dihedral_min_degrees": ...,

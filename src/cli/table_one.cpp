@@ -16,6 +16,7 @@ TableOne read_table_one(const cbr_mesh* m) {
     t.conforming_points = stat(CBR_STAT_CONFORMING_POINTS);
     t.steiner_generated = stat(CBR_STAT_STEINER_GENERATED);
     t.steiner_remaining = stat(CBR_STAT_STEINER_REMAINING);
+    t.steiner_inside = stat(CBR_STAT_STEINER_INSIDE);
     t.region_count = stat(CBR_STAT_REGION_COUNT);
     t.delaunay_seconds = stat(CBR_STAT_DELAUNAY_SECONDS);
     t.recovery_seconds = stat(CBR_STAT_RECOVERY_SECONDS);
@@ -32,6 +33,7 @@ void print_table_one(std::FILE* out, const TableOne& t) {
     std::fprintf(out, "  points added in conforming recovery %12.0f\n", t.conforming_points);
     std::fprintf(out, "  Steiner points generated inside     %12.0f\n", t.steiner_generated);
     std::fprintf(out, "  Steiner points remaining            %12.0f\n", t.steiner_remaining);
+    std::fprintf(out, "  Steiner points inside the domain    %12.0f\n", t.steiner_inside);
     std::fprintf(out, "  regions (exterior included)         %12.0f\n", t.region_count);
     std::fprintf(out, "  time: Delaunay %.3f s, recovery %.3f s, total %.3f s (recovery %.1f%%)\n",
                  t.delaunay_seconds, t.recovery_seconds, t.total_seconds,

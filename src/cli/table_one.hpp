@@ -16,6 +16,7 @@ struct TableOne {
     double conforming_points = 0;   // CBR_STAT_CONFORMING_POINTS
     double steiner_generated = 0;   // CBR_STAT_STEINER_GENERATED
     double steiner_remaining = 0;   // CBR_STAT_STEINER_REMAINING
+    double steiner_inside = 0;      // CBR_STAT_STEINER_INSIDE (bounded regions only)
     double region_count = 0;        // CBR_STAT_REGION_COUNT (exterior included)
     double delaunay_seconds = 0;    // CBR_STAT_DELAUNAY_SECONDS
     double recovery_seconds = 0;    // CBR_STAT_RECOVERY_SECONDS

@@ -3,7 +3,8 @@
 # (`tetgen -pYQ`, the Debian package) on every surface of the shared data,
 # one after the other in the same run, and prints per mesh and in total:
 # success, faces missing after Delaunay, faces recovered by flips, Steiner
-# points, wall time and the time ratio libcbr / TetGen.
+# points (libcbr: inside the domain, and all), wall time and the time ratio
+# libcbr / TetGen.
 #
 #   tests/bench/run_recover_bench.sh [options] [DATA_DIR] [SURFACE...]
 #
@@ -182,6 +183,9 @@ timed() {
 # "  recovered by flips   4"); stdout first, stderr as well.
 table_value() { cat "$out" "$err" | sed -n "s/^  $1  *\([0-9.eE+-]*\)\$/\1/p" | head -n 1; }
 
+# A whole-number value of the `cbr recover --json` report ("steiner_inside": 4).
+json_value() { sed -n "s/.*\"$1\": *\([0-9][0-9]*\).*/\1/p" "$2" 2>/dev/null | head -n 1; }
+
 # Counts of an OFF file's header: "nv nf".
 off_counts() {
     awk '{ sub(/#.*/, "") } NF == 0 { next }
@@ -205,7 +209,7 @@ verify_one() { # INPUT OUTPUT NAME -> sets vstat, vjson
 }
 
 raw=$work/raw.csv
-echo "file,faces,points,cbr_status,cbr_exit,cbr_missing,cbr_flips,cbr_steiner,cbr_seconds,cbr_delaunay_s,cbr_recovery_s,cbr_total_s,tetgen_status,tetgen_exit,tetgen_steiner,tetgen_seconds,cbr_verify,cbr_verify_json,tetgen_verify,tetgen_verify_json,note" >"$raw"
+echo "file,faces,points,cbr_status,cbr_exit,cbr_missing,cbr_flips,cbr_steiner,cbr_steiner_all,cbr_seconds,cbr_delaunay_s,cbr_recovery_s,cbr_total_s,tetgen_status,tetgen_exit,tetgen_steiner,tetgen_seconds,cbr_verify,cbr_verify_json,tetgen_verify,tetgen_verify_json,note" >"$raw"
 
 n=${#files[@]}
 i=0
@@ -222,7 +226,7 @@ EOF
 
     # libcbr
     out=$dir/cbr.out err=$dir/cbr.err
-    timed "$cbr" recover "$f" -o "$dir/cbr.mesh"
+    timed "$cbr" recover "$f" -o "$dir/cbr.mesh" --json "$dir/cbr.json"
     cbr_exit=$rc
     case $rc in
         0) cbr_status=ok ;;
@@ -233,7 +237,10 @@ EOF
     cbr_secs=$secs
     cbr_missing=$(table_value "faces missing after Delaunay")
     cbr_flips=$(table_value "recovered by flips")
-    cbr_steiner=$(table_value "Steiner points remaining")
+    # Steiner: those of the domain mesh (bounded regions), as TetGen counts;
+    # Steiner (all): the exterior's too (dropped with it).
+    cbr_steiner=$(json_value steiner_inside "$dir/cbr.json")
+    cbr_steiner_all=$(table_value "Steiner points remaining")
     times=$(cat "$out" "$err" | sed -n 's/^  time: Delaunay \([0-9.]*\) s, recovery \([0-9.]*\) s, total \([0-9.]*\) s.*/\1 \2 \3/p' | head -n 1)
     read -r cbr_del cbr_rec cbr_tot <<EOF
 $times
@@ -282,7 +289,7 @@ EOF
         fi
     fi
 
-    echo "$name,$nfaces,$npoints,$cbr_status,$cbr_exit,$cbr_missing,$cbr_flips,$cbr_steiner,$cbr_secs,$cbr_del,$cbr_rec,$cbr_tot,$tg_status,$tg_exit,$tg_steiner,$tg_secs,$cv,$cvj,$tv,$tvj,\"$note\"" >>"$raw"
+    echo "$name,$nfaces,$npoints,$cbr_status,$cbr_exit,$cbr_missing,$cbr_flips,$cbr_steiner,$cbr_steiner_all,$cbr_secs,$cbr_del,$cbr_rec,$cbr_tot,$tg_status,$tg_exit,$tg_steiner,$tg_secs,$cv,$cvj,$tv,$tvj,\"$note\"" >>"$raw"
     printf '   [%d/%d] %-36s cbr %-7s %8s s   tetgen %-7s %8s s%s\n' "$i" "$n" "$name" "$cbr_status" "$cbr_secs" \
         "${tg_status:-n/a}" "${tg_secs:--}" "${checker:+   verify cbr ${cv:--} tetgen ${tv:--}}"
     if [ "$keep" -eq 0 ]; then

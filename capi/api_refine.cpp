@@ -1,0 +1,82 @@
+// extern "C" full mesh generation (Du & Wang 2004, §6): cbr_mesh_refine and
+// the CBR_STAT_* keys of its results (Table II, counts, time).
+#include <cbr/cbr.h>
+
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "handle.hpp"
+#include "mesh/mesh_check.hpp"
+#include "refine/quality_stats.hpp"
+#include "refine/refine.hpp"
+
+using cbr::capi::ApiError;
+using cbr::capi::guarded;
+using cbr::capi::require;
+
+namespace cbr::capi {
+
+bool refine_stat(const cbr_mesh& mesh, int key, double& value) {
+    const RefineState& r = mesh.refine;
+    const auto count = [](std::size_t n) { return static_cast<double>(n); };
+    switch (key) {
+        case CBR_STAT_QUALITY_AVERAGE: value = r.quality.average; return true;
+        case CBR_STAT_QUALITY_MIN: value = r.quality.minimum; return true;
+        case CBR_STAT_PERCENT_ABOVE_0_4: value = r.quality.percent_above_0_4; return true;
+        case CBR_STAT_PERCENT_BELOW_0_1: value = r.quality.percent_below_0_1; return true;
+        case CBR_STAT_BAD_TOUCHING_STEINER: value = count(r.quality.bad_touching_steiner); return true;
+        case CBR_STAT_DIHEDRAL_MIN: value = r.quality.dihedral_min_deg; return true;
+        case CBR_STAT_DIHEDRAL_MAX: value = r.quality.dihedral_max_deg; return true;
+        case CBR_STAT_FIELD_POINTS: value = count(r.stats.field_points); return true;
+        case CBR_STAT_REFINE_FLIPS: value = count(r.stats.flips); return true;
+        case CBR_STAT_REFINE_SECONDS: value = r.seconds; return true;
+        case CBR_STAT_REFINE_TETS: value = count(r.quality.tets); return true;
+        default: return false;
+    }
+}
+
+}  // namespace cbr::capi
+
+extern "C" {
+
+CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
+    return guarded(mesh, "cbr_mesh_refine", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        require(mesh->recovery.done, CBR_ERR_INVALID_ARGUMENT,
+                "no recovered boundary: call cbr_mesh_recover_faces (successfully) first");
+        const cbr::refine::RefineOptions& options = mesh->refine_options;
+        require(options.size_from_surface || options.target_size > 0, CBR_ERR_INVALID_ARGUMENT,
+                "no sizing field: CBR_PARAM_REFINE_SIZE_FROM_SURFACE is 0 and CBR_PARAM_REFINE_SIZE is 0");
+        const auto start = std::chrono::steady_clock::now();
+        cbr::mesh::TetMesh& m = mesh->delaunay.mesh_for_update();
+        // A failed call changes nothing: work on the mesh, restore the copy
+        // on any exception or failed check.
+        const cbr::mesh::TetMesh backup = m;
+        const cbr::capi::RecoveryState& rec = mesh->recovery;
+        cbr::capi::RefineState state;
+        cbr::recover::RegionMap regions;
+        try {
+            state.stats = cbr::refine::refine_mesh(m, rec.faces, rec.regions.of_tet, rec.steiner, options);
+            regions = cbr::recover::classify_regions(m, rec.faces);
+            const cbr::mesh::CheckReport check = cbr::mesh::check_mesh(m);
+            if (!check.ok()) throw ApiError{CBR_ERR_INTERNAL, "refinement left an invalid mesh: " + check.errors.front()};
+            if (regions.count != rec.regions.count)
+                throw ApiError{CBR_ERR_INTERNAL, "refinement changed the number of regions from " +
+                                                     std::to_string(rec.regions.count) + " to " +
+                                                     std::to_string(regions.count)};
+        } catch (...) {
+            m = backup;
+            throw;
+        }
+        mesh->delaunay.adopt_added_vertices();  // new points: external id == internal id
+        mesh->recovery.regions = std::move(regions);
+        state.quality = cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner);
+        state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        state.done = true;
+        mesh->refine = std::move(state);
+        return CBR_OK;
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,276 @@
+#include "refine/field_points.hpp"
+
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <unordered_set>
+#include <vector>
+
+#include "geom/predicates.hpp"
+#include "recover/protected_insertion.hpp"
+#include "refine/locate.hpp"
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+using mesh::facet_tet;
+using mesh::kFaceVertices;
+using mesh::TetId;
+using mesh::VertexId;
+
+// A fallback midpoint must be at least this fraction of its edge's length
+// away from the constraint faces around it.
+constexpr double kMinSurfaceGap = 0.1;
+
+// Quality refinement stops at tetrahedra whose circumradius is below this
+// fraction of the local size (see meets_quality).
+constexpr double kMinQualityRadius = 0.5;
+
+// Slivers: a radius ratio below this fails the quality bound whatever the
+// radius-edge ratio says (a sliver can have a fine radius-edge ratio), and
+// gets its centroid when its circumcentre is refused, if the star is at
+// least kSliverGain times better.
+constexpr double kSliverQuality = 0.1;
+constexpr double kSliverGain = 2.0;
+
+// A queued tetrahedron, with its vertices: the slot may have been reused.
+struct Entry {
+    TetId t;
+    std::array<VertexId, 4> v;
+};
+
+class Refiner {
+public:
+    Refiner(RefineContext& c, RefineStats& stats) : c_(c), m_(c.m), stats_(stats) {}
+    void run();
+
+private:
+    void push(TetId t) {
+        const VertexId* v = m_.vertices(t);
+        queue_.push_back({t, {v[0], v[1], v[2], v[3]}});
+    }
+    bool current(const Entry& e) const {
+        if (m_.is_free(e.t) || !c_.in_domain(e.t)) return false;
+        const VertexId* v = m_.vertices(e.t);
+        return v[0] == e.v[0] && v[1] == e.v[1] && v[2] == e.v[2] && v[3] == e.v[3];
+    }
+    bool meets_quality(TetId t) const;
+    struct Probe {
+        bool encroaches = false;
+        double gap = std::numeric_limits<double>::infinity();
+        double star_quality = 2;  // when asked
+    };
+    Probe probe(TetId start, const double* p, bool want_star = false) const;
+    bool try_centroid(TetId t);
+    bool insert(const Point& p, TetId start);
+    bool try_circumcentre(TetId t);
+    bool try_edge_midpoint(TetId t);
+    std::size_t point_cap() const;
+
+    RefineContext& c_;
+    mesh::TetMesh& m_;
+    RefineStats& stats_;
+    std::deque<Entry> queue_;
+};
+
+// Also "met" when the circumradius is already below kMinQualityRadius times
+// the local size: a circumcentre there would sit closer than that to the
+// corners, and near small input angles (which the surface keeps) such
+// insertions cascade without end (the classic limit of Delaunay
+// refinement; TetGen's -Y meshes stop there too).
+bool Refiner::meets_quality(TetId t) const {
+    const VertexId* v = m_.vertices(t);
+    const double* p[4] = {m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
+    if (radius_edge_ratio(p[0], p[1], p[2], p[3]) <= c_.options.quality_bound &&
+        radius_ratio(p[0], p[1], p[2], p[3]) >= kSliverQuality)
+        return true;
+    Point cc;
+    if (!circumcentre(p[0], p[1], p[2], p[3], cc)) return false;
+    const double h = 0.25 * (c_.size.at(v[0]) + c_.size.at(v[1]) + c_.size.at(v[2]) + c_.size.at(v[3]));
+    const double r = kMinQualityRadius * h;
+    return squared_distance(cc.data(), p[0]) < r * r;
+}
+
+// p's (Bowyer-Watson) cavity, grown from start the way insert_protected
+// grows it (insphere_sos conflicts, never across a constraint face), and
+// what its boundary says: whether p lies in the diametral ball of a
+// constraint face (it encroaches), its smallest distance to their planes
+// (counted where its projection falls within the face's circumcircle),
+// and, when asked, the smallest quality of the star (every boundary face
+// coned to p; -1 when p does not see a boundary face strictly, where the
+// §5.1 correction would change the cavity).
+Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) const {
+    Probe out;
+    std::vector<TetId> cavity{start};
+    std::unordered_set<TetId> tested{start}, in{start};
+    for (std::size_t i = 0; i < cavity.size(); ++i) {
+        const TetId t = cavity[i];
+        for (int f = 0; f < 4; ++f) {
+            if (m_.is_constrained(t, f)) continue;
+            const TetId n = facet_tet(m_.neighbor(t, f));
+            if (m_.is_ghost(n) || !tested.insert(n).second) continue;
+            const VertexId* w = m_.vertices(n);
+            if (geom::insphere_sos(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), p) > 0) {
+                cavity.push_back(n);
+                in.insert(n);
+            }
+        }
+    }
+    for (const TetId t : cavity) {
+        const VertexId* v = m_.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            const bool constrained = m_.is_constrained(t, f);
+            if (!constrained && in.count(facet_tet(m_.neighbor(t, f))) != 0) continue;  // interior face
+            const int* k = kFaceVertices[f];
+            const double* a = m_.point(v[k[0]]);
+            const double* b = m_.point(v[k[1]]);
+            const double* c = m_.point(v[k[2]]);
+            if (want_star && out.star_quality >= 0) {
+                if (geom::orient3d(a, b, c, p) <= 0) out.star_quality = -1;
+                else out.star_quality = std::min(out.star_quality, radius_ratio(a, b, c, p));
+            }
+            if (!constrained) continue;
+            Point centre;
+            double r2 = 0;
+            if (!triangle_circumsphere(a, b, c, centre, r2)) continue;
+            const double d2 = squared_distance(p, centre.data());
+            if (d2 < r2) out.encroaches = true;
+            const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+            const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            const double h = (n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2])) / std::sqrt(nn);
+            if (d2 - h * h < r2) out.gap = std::min(out.gap, std::fabs(h));
+        }
+    }
+    return out;
+}
+
+// A sliver (radius ratio under kSliverQuality) whose circumcentre was
+// refused: its centroid, when the star it would make is strictly better
+// than the sliver (checked on the cavity before inserting: there is no
+// undo).
+bool Refiner::try_centroid(TetId t) {
+    const VertexId* v = m_.vertices(t);
+    const double* q[4] = {m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
+    const double old_q = radius_ratio(q[0], q[1], q[2], q[3]);
+    if (old_q >= kSliverQuality) return false;
+    Point g;
+    for (int k = 0; k < 3; ++k) g[k] = 0.25 * (q[0][k] + q[1][k] + q[2][k] + q[3][k]);
+    const Location loc = locate_in_region(c_, t, g.data());
+    if (loc.where != Located::kInside) return false;
+    const Probe pr = probe(loc.tet, g.data(), true);
+    if (pr.encroaches || pr.star_quality <= kSliverGain * old_q) return false;
+    return insert(g, loc.tet);
+}
+
+bool Refiner::insert(const Point& p, TetId start) {
+    const std::int32_t region = c_.region(start);
+    const double h = c_.size.for_new_point(m_, start, p.data());
+    const VertexId id = m_.add_points(p.data(), 1);
+    const recover::ProtectedInsertResult res = recover::insert_protected(m_, id, start);
+    if (!res.ok) {
+        m_.truncate_vertices(id);
+        return false;
+    }
+    c_.add_vertex(h);
+    stats_.cavity_tets += res.initial_cavity + res.added - res.removed;
+    for (TetId t : res.created) {
+        c_.set_region(t, region);
+        push(t);
+    }
+    ++stats_.field_points;
+    return true;
+}
+
+bool Refiner::try_circumcentre(TetId t) {
+    const VertexId* v = m_.vertices(t);
+    Point cc;
+    if (!circumcentre(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), cc)) return false;
+    const Location loc = locate_in_region(c_, t, cc.data());
+    if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
+    if (probe(loc.tet, cc.data()).encroaches) return false;
+    return insert(cc, loc.tet);
+}
+
+bool Refiner::try_edge_midpoint(TetId t) {
+    const VertexId* v = m_.vertices(t);
+    int bi = -1, bj = -1;
+    double worst = 1;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+            if (c_.edge_within_size(v[i], v[j])) continue;
+            const double bound = kEdgeFactor * c_.edge_size(v[i], v[j]);
+            const double excess = std::sqrt(squared_distance(m_.point(v[i]), m_.point(v[j]))) / bound;
+            if (excess > worst) worst = excess, bi = i, bj = j;
+        }
+    if (bi < 0) return false;
+    const double* a = m_.point(v[bi]);
+    const double* b = m_.point(v[bj]);
+    const Point mid = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+    const Location loc = locate_in_region(c_, t, mid.data());
+    if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
+    // Too close to the surface: splitting again and again toward a face
+    // that cannot be split would only make flat elements.
+    const double length = std::sqrt(squared_distance(a, b));
+    if (probe(loc.tet, mid.data()).gap < kMinSurfaceGap * length) return false;
+    return insert(mid, loc.tet);
+}
+
+// A guard against runaway refinement: 10x the number of points an ideal
+// mesh of the field would have (about one point per 5 tetrahedra), plus a
+// margin.
+std::size_t Refiner::point_cap() const {
+    double ideal_tets = 0;
+    for (TetId t = 0; t < m_.slot_count(); ++t) {
+        if (!c_.in_domain(t)) continue;
+        const VertexId* v = m_.vertices(t);
+        const double* a = m_.point(v[0]);
+        double h = c_.size.at(v[0]);
+        for (int i = 1; i < 4; ++i) h = std::min(h, c_.size.at(v[i]));
+        const double* q[3] = {m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
+        const double u[3] = {q[0][0] - a[0], q[0][1] - a[1], q[0][2] - a[2]};
+        const double s[3] = {q[1][0] - a[0], q[1][1] - a[1], q[1][2] - a[2]};
+        const double w[3] = {q[2][0] - a[0], q[2][1] - a[1], q[2][2] - a[2]};
+        const double six_v = std::fabs(u[0] * (s[1] * w[2] - s[2] * w[1]) - u[1] * (s[0] * w[2] - s[2] * w[0]) +
+                                       u[2] * (s[0] * w[1] - s[1] * w[0]));
+        // regular tetrahedron of edge h: volume h^3 / (6 sqrt 2)
+        ideal_tets += (six_v / 6) / (h * h * h / 8.48528137423857);
+    }
+    return static_cast<std::size_t>(std::min(2.0 * ideal_tets + 1000.0, 1.0e9));
+}
+
+void Refiner::run() {
+    for (TetId t = 0; t < m_.slot_count(); ++t)
+        if (c_.in_domain(t)) push(t);
+    const std::size_t cap = point_cap();
+    while (!queue_.empty()) {
+        const Entry e = queue_.front();
+        queue_.pop_front();
+        if (!current(e)) continue;
+        const bool size_ok = c_.tet_within_size(e.t);
+        if (size_ok && meets_quality(e.t)) continue;
+        if (stats_.field_points >= cap) {
+            stats_.point_cap_hit = true;
+            break;
+        }
+        if (try_circumcentre(e.t)) continue;
+        if (!size_ok && try_edge_midpoint(e.t)) {
+            ++stats_.size_fallbacks;
+            continue;
+        }
+        if (try_centroid(e.t)) continue;
+        ++stats_.rejected;
+    }
+}
+
+}  // namespace
+
+void insert_field_points(RefineContext& c, RefineStats& stats) {
+    Refiner r(c, stats);
+    r.run();
+}
+
+}  // namespace cbr::refine

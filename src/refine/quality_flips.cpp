@@ -1,0 +1,117 @@
+#include "refine/quality_flips.hpp"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "mesh/ball_shell.hpp"
+#include "mesh/flips.hpp"
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+using mesh::facet_face;
+using mesh::facet_tet;
+using mesh::kFaceVertices;
+using mesh::TetId;
+using mesh::VertexId;
+
+// A flip must raise the minimum quality by this much (relative) to count:
+// no cycling on ties.
+constexpr double kGain = 1.0 + 1e-3;
+
+// Edge removal is tried on shells of up to this many tetrahedra (the ring
+// triangulation is O(n^3)).
+constexpr std::size_t kMaxShell = 7;
+
+class Flipper {
+public:
+    explicit Flipper(RefineContext& c) : c_(c), m_(c.m) {}
+    bool try_edge(TetId t, VertexId u, VertexId v);
+    bool try_face(TetId t, int f);
+    double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
+        return radius_ratio(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
+    }
+    double q(TetId t) const {
+        const VertexId* v = m_.vertices(t);
+        return q(v[0], v[1], v[2], v[3]);
+    }
+
+private:
+    void adopt(const std::vector<TetId>& created, std::int32_t region) {
+        for (TetId t : created) c_.set_region(t, region);
+    }
+    RefineContext& c_;
+    mesh::TetMesh& m_;
+};
+
+// Edge removal of uv (Definition 5.8, the shell transformation) with the
+// ring triangulation of mesh/flips.hpp.
+bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
+    if (c_.is_surface_edge(u, v)) return false;
+    mesh::Shell s;
+    if (!mesh::shell(m_, u, v, t, s) || s.size() < 3 || s.size() > kMaxShell || s.has_ghost()) return false;
+    const std::int32_t region = c_.region(t);
+    double old_min = 1;
+    for (TetId x : s.tets) {
+        if (!c_.in_domain(x) || c_.region(x) != region) return false;
+        old_min = std::min(old_min, q(x));
+    }
+    const std::vector<mesh::RingTriangle> tris = mesh::best_ring_triangulation(m_, u, v, s);
+    if (tris.empty()) return false;
+    double new_min = 1;
+    for (const mesh::RingTriangle& tri : tris) {
+        const VertexId a = s.ring[static_cast<std::size_t>(tri[0])], b = s.ring[static_cast<std::size_t>(tri[1])],
+                       d = s.ring[static_cast<std::size_t>(tri[2])];
+        if (!c_.edge_within_size(a, b) || !c_.edge_within_size(b, d) || !c_.edge_within_size(a, d)) return false;
+        new_min = std::min({new_min, q(a, b, d, v), q(a, d, b, u)});
+        if (new_min <= old_min * kGain) return false;
+    }
+    std::vector<TetId> created;
+    if (mesh::transform_shell(m_, u, v, s, tris, &created) != mesh::FlipResult::kDone) return false;
+    adopt(created, region);
+    return true;
+}
+
+// 2-3 flip across face f of t: the two tetrahedra become three around the
+// edge joining their apexes.
+bool Flipper::try_face(TetId t, int f) {
+    if (m_.is_constrained(t, f)) return false;
+    const mesh::FacetRef r = m_.neighbor(t, f);
+    const TetId n = facet_tet(r);
+    const std::int32_t region = c_.region(t);
+    if (!c_.in_domain(n) || c_.region(n) != region) return false;
+    const VertexId d = m_.vertex(t, f), e = m_.vertex(n, facet_face(r));
+    if (!c_.edge_within_size(d, e)) return false;
+    const double old_min = std::min(q(t), q(n));
+    const int* k = kFaceVertices[f];
+    const VertexId x[3] = {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
+    double new_min = 1;
+    for (int i = 0; i < 3; ++i) new_min = std::min(new_min, q(x[i], x[(i + 1) % 3], d, e));
+    if (new_min <= old_min * kGain) return false;
+    std::vector<TetId> created;
+    if (mesh::flip23(m_, t, f, {}, &created) != mesh::FlipResult::kDone) return false;
+    adopt(created, region);
+    return true;
+}
+
+}  // namespace
+
+std::size_t improve_by_flips(RefineContext& c, double threshold) {
+    Flipper flipper(c);
+    std::size_t flips = 0;
+    const std::size_t slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t) {
+        if (!c.in_domain(t) || flipper.q(t) >= threshold) continue;
+        bool done = false;
+        for (int i = 0; i < 4 && !done; ++i)
+            for (int j = i + 1; j < 4 && !done; ++j)
+                done = flipper.try_edge(t, c.m.vertex(t, i), c.m.vertex(t, j));
+        for (int f = 0; f < 4 && !done; ++f) done = flipper.try_face(t, f);
+        flips += done;
+    }
+    return flips;
+}
+
+}  // namespace cbr::refine

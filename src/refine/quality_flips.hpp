@@ -1,0 +1,20 @@
+// Quality-improving flips of the interior (Du & Wang 2004, §6 step (e):
+// "optimize the mesh with local ... topological operations"): 2-3 flips
+// and edge removals (3-2, 4-4 and larger shells, mesh/flips.hpp), each done
+// only when the smallest radius ratio of the tetrahedra it replaces grows.
+// A constraint face is never removed (no face through a surface edge is
+// touched; replace_tets refuses it anyway), the exterior is not changed,
+// and no new edge breaks the size bound.
+#pragma once
+
+#include <cstddef>
+
+#include "refine/refine_context.hpp"
+
+namespace cbr::refine {
+
+// One sweep over the tetrahedra of the bounded regions whose radius ratio
+// is below `threshold`; returns the number of flips done.
+std::size_t improve_by_flips(RefineContext& c, double threshold);
+
+}  // namespace cbr::refine

@@ -1,0 +1,84 @@
+#include "refine/refine_context.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+}
+
+}  // namespace
+
+RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces& faces,
+                             std::vector<std::int32_t> region, const std::vector<mesh::VertexId>& movable,
+                             const RefineOptions& opts)
+    : m(mesh), options(opts), size(mesh, faces, opts), region_(std::move(region)) {
+    surface_vertex_.assign(m.vertex_count(), 0);
+    movable_.assign(m.vertex_count(), 0);
+    for (mesh::VertexId v : movable)
+        if (v < movable_.size()) movable_[v] = 1;
+    surface_edges_.reserve(3 * faces.size());
+    reach_.assign(m.vertex_count(), 0);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const recover::Triangle& t = faces.triangle(i);
+        Point centre;
+        double r2 = 0;
+        const double r = triangle_circumsphere(m.point(t[0]), m.point(t[1]), m.point(t[2]), centre, r2)
+                             ? std::sqrt(r2) : 0;
+        for (int k = 0; k < 3; ++k) {
+            surface_vertex_[t[k]] = 1;
+            surface_edges_.insert(edge_key(t[k], t[(k + 1) % 3]));
+            reach_[t[k]] = std::max(reach_[t[k]], r);
+        }
+    }
+}
+
+void RefineContext::set_region(mesh::TetId t, std::int32_t r) {
+    if (t >= region_.size()) region_.resize(std::max<std::size_t>(t + 1, region_.size() * 3 / 2), -1);
+    region_[t] = r;
+}
+
+bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const {
+    if (!is_surface_vertex(a) || !is_surface_vertex(b)) return false;
+    return surface_edges_.count(edge_key(a, b)) != 0;
+}
+
+double RefineContext::edge_size(mesh::VertexId a, mesh::VertexId b) const {
+    const double mean = 0.5 * (size.at(a) + size.at(b));
+    const bool sa = is_surface_vertex(a), sb = is_surface_vertex(b);
+    // An edge between two surface vertices that is not an input edge
+    // crosses the interior: the interior rule applies along it (H caps it),
+    // and it can always be split (its midpoint is inside the region).
+    if (sa && sb) return size.interior(mean);
+    // An edge from a surface vertex u into the interior: no point can be
+    // closer to all three corners of an input triangle than its
+    // circumradius, so the bound never asks less than that (the surface is
+    // never split; §6, "the surface mesh should conform with the sizing
+    // field").
+    if (sa) return std::max(mean, kSurfaceReach * reach_[a] / kEdgeFactor);
+    if (sb) return std::max(mean, kSurfaceReach * reach_[b] / kEdgeFactor);
+    return mean;
+}
+
+bool RefineContext::edge_within_size(mesh::VertexId a, mesh::VertexId b) const {
+    const double bound = kEdgeFactor * edge_size(a, b);
+    if (squared_distance(m.point(a), m.point(b)) <= bound * bound) return true;
+    return is_surface_edge(a, b);
+}
+
+bool RefineContext::tet_within_size(mesh::TetId t) const {
+    const mesh::VertexId* v = m.vertices(t);
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+            if (!edge_within_size(v[i], v[j])) return false;
+    return true;
+}
+
+}  // namespace cbr::refine

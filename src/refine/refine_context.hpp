@@ -1,0 +1,67 @@
+// What the steps of full mesh generation share: the mesh, the region of
+// every tetrahedron slot (kept up to date as tetrahedra are replaced:
+// cavities and flips never cross a constraint face, so new tetrahedra
+// inherit the region of the ones they replace), the sizing field, the
+// input edges (never split) and the vertices that must not move.
+#pragma once
+
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/constraint_faces.hpp"
+#include "refine/refine_options.hpp"
+#include "refine/sizing_field.hpp"
+
+namespace cbr::refine {
+
+class RefineContext {
+public:
+    // `region`: per slot, from recover::classify_regions. `movable`: the
+    // vertices optimisation may move (Steiner points of recovery); every
+    // vertex added later is movable.
+    RefineContext(mesh::TetMesh& m, const recover::ConstraintFaces& faces, std::vector<std::int32_t> region,
+                  const std::vector<mesh::VertexId>& movable, const RefineOptions& options);
+
+    mesh::TetMesh& m;
+    const RefineOptions options;
+    SizingField size;
+
+    // Region of slot t (0 outside, or for slots not assigned).
+    std::int32_t region(mesh::TetId t) const { return t < region_.size() ? region_[t] : 0; }
+    void set_region(mesh::TetId t, std::int32_t r);
+    // A live finite tetrahedron of a bounded region (the part refined).
+    bool in_domain(mesh::TetId t) const { return !m.is_free(t) && !m.is_ghost(t) && region(t) > 0; }
+
+    bool is_surface_vertex(mesh::VertexId v) const { return v < surface_vertex_.size() && surface_vertex_[v]; }
+    bool is_surface_edge(mesh::VertexId a, mesh::VertexId b) const;
+    bool is_movable(mesh::VertexId v) const { return v >= movable_.size() || movable_[v]; }
+
+    // The target length of edge uv: (h(u) + h(v)) / 2; for a non-input edge
+    // joining two surface vertices, that value under the interior rule of
+    // the field (capped by H, or H alone: SizingField::interior); for an
+    // edge from a surface vertex u to an interior one, at least
+    // kSurfaceReach / kEdgeFactor times the largest circumradius of the
+    // input triangles at u.
+    double edge_size(mesh::VertexId a, mesh::VertexId b) const;
+    // The size bound (refine_options.hpp, kEdgeFactor): false when uv is a
+    // non-surface edge longer than kEdgeFactor * edge_size(u, v).
+    bool edge_within_size(mesh::VertexId a, mesh::VertexId b) const;
+    // Every edge of t within the size bound.
+    bool tet_within_size(mesh::TetId t) const;
+
+    // Registers a point appended to m (value of the sizing field there).
+    void add_vertex(double h) { size.add(h); }
+
+    const std::vector<std::int32_t>& regions() const { return region_; }
+
+private:
+    std::vector<std::int32_t> region_;
+    std::vector<char> surface_vertex_;
+    std::vector<double> reach_;  // per surface vertex: largest circumradius of its input triangles
+    std::vector<char> movable_;
+    std::unordered_set<std::uint64_t> surface_edges_;
+};
+
+}  // namespace cbr::refine

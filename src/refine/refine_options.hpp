@@ -1,0 +1,53 @@
+// Options and results of full mesh generation (Du & Wang 2004, §6 steps
+// (d) and (e)): what cbr_mesh_refine's CBR_PARAM_* keys set and its
+// CBR_STAT_* keys read.
+#pragma once
+
+#include <cstddef>
+
+namespace cbr::refine {
+
+struct RefineOptions {
+    // Constant target edge length H; 0: none (the surface field alone).
+    double target_size = 0;
+    // Use the field derived from the surface (each surface vertex: mean
+    // length of its input edges). With target_size > 0 the field is the
+    // smaller of both; without the surface field, H alone.
+    bool size_from_surface = true;
+    // Grading g: the field is made g-Lipschitz over the mesh edges,
+    // h(v) <= h(u) + g |uv| (a smooth field, §6: "the sizing field ...
+    // should avoid large variation").
+    double grading = 0.5;
+    // Radius-edge ratio bound B (circumradius / shortest edge) above which
+    // a tetrahedron gets its circumcentre inserted (TetGen's -q bound).
+    double quality_bound = 1.414;
+    // Optimisation passes (each: quality flips, then smoothing); 0 = none.
+    int optimisation_passes = 3;
+    // For tests: switch off one part of the optimisation.
+    bool flips = true;
+    bool smoothing = true;
+};
+
+// Refinement accepts a tetrahedron when each of its non-surface edges uv is
+// at most kEdgeFactor * (h(u) + h(v)) / 2 long (surface edges are input and
+// never split). Flips and smoothing keep this bound.
+inline constexpr double kEdgeFactor = 1.5;
+// An edge from a surface vertex u into the interior may always be as long as
+// kSurfaceReach times the largest circumradius of the input triangles at u
+// (refine_context.hpp, RefineContext::edge_size).
+inline constexpr double kSurfaceReach = 1.25;
+
+struct RefineStats {
+    std::size_t field_points = 0;       // points inserted by refinement
+    std::size_t size_fallbacks = 0;     // of which edge midpoints (circumcentre rejected)
+    std::size_t rejected = 0;           // candidate points skipped (outside, encroaching, failed insertion)
+    // Tetrahedra left over the size bound at the end: an over-long edge whose
+    // circumcentre and midpoint were both refused (too close to the surface).
+    std::size_t unresolved_size = 0;
+    bool point_cap_hit = false;
+    std::size_t cavity_tets = 0;        // tetrahedra removed by the insertions, in all (cost measure)
+    std::size_t flips = 0;              // quality flips done (2-3 and edge removals)
+    std::size_t smoothed = 0;           // vertex moves accepted
+};
+
+}  // namespace cbr::refine

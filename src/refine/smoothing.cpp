@@ -1,0 +1,140 @@
+#include "refine/smoothing.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+using mesh::TetId;
+using mesh::VertexId;
+
+// Below this radius ratio, the worst tetrahedron of a ball also gets
+// candidates that lift the vertex off its opposite face.
+constexpr double kLiftBelow = 0.3;
+
+class Smoother {
+public:
+    explicit Smoother(RefineContext& c) : c_(c), m_(c.m) {}
+    bool smooth(VertexId v, TetId start);
+
+private:
+    double min_quality() const;
+    bool ball_valid(VertexId v) const;
+
+    RefineContext& c_;
+    mesh::TetMesh& m_;
+    std::vector<TetId> ball_;
+    std::vector<VertexId> neighbours_;
+};
+
+double Smoother::min_quality() const {  // of the ball
+    double q = 1;
+    for (TetId t : ball_) {
+        const VertexId* v = m_.vertices(t);
+        q = std::min(q, radius_ratio(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])));
+    }
+    return q;
+}
+
+bool Smoother::ball_valid(VertexId v) const {
+    for (TetId t : ball_) {
+        const VertexId* w = m_.vertices(t);
+        if (geom::orient3d(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) <= 0) return false;
+    }
+    for (VertexId u : neighbours_)
+        if (!c_.edge_within_size(u, v)) return false;
+    return true;
+}
+
+// Candidate positions: the centroid of the ball's other vertices (Laplacian
+// smoothing, §6 "local constrained Laplacian smoothing"), half and a quarter
+// of the way there; then, when the worst tetrahedron of the ball is still
+// bad, steps away from its face opposite v, along that face's normal (a
+// vertex too close to a face, often a face of the surface, is lifted off
+// it). The best candidate that raises the ball's minimum quality wins.
+bool Smoother::smooth(VertexId v, TetId start) {
+    if (!mesh::ball(m_, v, start, ball_)) return false;
+    neighbours_.clear();
+    for (TetId t : ball_) {
+        if (!c_.in_domain(t)) return false;
+        for (int i = 0; i < 4; ++i)
+            if (m_.vertex(t, i) != v) neighbours_.push_back(m_.vertex(t, i));
+    }
+    std::sort(neighbours_.begin(), neighbours_.end());
+    neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
+    Point centroid = {0, 0, 0};
+    double mean_edge = 0;
+    const Point here = {m_.point(v)[0], m_.point(v)[1], m_.point(v)[2]};
+    for (VertexId u : neighbours_) {
+        for (int k = 0; k < 3; ++k) centroid[k] += m_.point(u)[k];
+        mean_edge += std::sqrt(squared_distance(m_.point(u), here.data()));
+    }
+    for (double& x : centroid) x /= static_cast<double>(neighbours_.size());
+    mean_edge /= static_cast<double>(neighbours_.size());
+    std::vector<Point> candidates;
+    for (double step : {1.0, 0.5, 0.25}) {
+        Point p;
+        for (int k = 0; k < 3; ++k) p[k] = here[k] + step * (centroid[k] - here[k]);
+        candidates.push_back(p);
+    }
+    // The worst tetrahedron and the unit normal of its face opposite v,
+    // pointing toward v (the face's vertices in kFaceVertices order).
+    TetId worst = ball_.front();
+    double worst_q = 2;
+    for (TetId t : ball_) {
+        const VertexId* w = m_.vertices(t);
+        const double q = radius_ratio(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
+        if (q < worst_q) worst_q = q, worst = t;
+    }
+    if (worst_q < kLiftBelow) {
+        const int i = mesh::vertex_index(m_, worst, v);
+        const int* k = mesh::kFaceVertices[i];
+        const double* a = m_.point(m_.vertex(worst, k[0]));
+        const double* b = m_.point(m_.vertex(worst, k[1]));
+        const double* c = m_.point(m_.vertex(worst, k[2]));
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len > 0) {
+            for (double& x : n) x /= len;
+            for (double step : {0.05, 0.1, 0.2, 0.4}) {
+                Point p;
+                for (int d = 0; d < 3; ++d) p[d] = here[d] + step * mean_edge * n[d];
+                candidates.push_back(p);
+            }
+        }
+    }
+    const double old_min = worst_q;
+    double best_q = old_min;
+    const Point* best = nullptr;
+    for (const Point& p : candidates) {
+        m_.set_point(v, p.data());
+        if (!ball_valid(v)) continue;
+        const double q = min_quality();
+        if (q > best_q) best_q = q, best = &p;
+    }
+    m_.set_point(v, best ? best->data() : here.data());
+    return best != nullptr;
+}
+
+}  // namespace
+
+std::size_t smooth_vertices(RefineContext& c) {
+    const std::vector<TetId> incident = mesh::incident_tets(c.m);
+    Smoother s(c);
+    std::size_t moved = 0;
+    for (VertexId v = 0; v < c.m.vertex_count(); ++v) {
+        if (!c.is_movable(v) || c.is_surface_vertex(v) || incident[v] == mesh::kNoTet) continue;
+        moved += s.smooth(v, incident[v]);
+    }
+    return moved;
+}
+
+}  // namespace cbr::refine

@@ -1,0 +1,21 @@
+// Smoothing of interior vertices (Du & Wang 2004, §6: the remaining Steiner
+// points "repositioned ... by mesh smoothing", and step (e), the final
+// optimisation). Only vertices that are not input points move (field
+// points and recovery's Steiner points), only inside the bounded regions,
+// and a move is kept only when every tetrahedron of the vertex's ball stays
+// positively oriented (exact orient3d: the vertex stays strictly inside its
+// ball, so it never reaches the surface), its smallest radius ratio grows,
+// and no edge breaks the size bound. Otherwise the vertex goes back, bit
+// for bit.
+#pragma once
+
+#include <cstddef>
+
+#include "refine/refine_context.hpp"
+
+namespace cbr::refine {
+
+// One sweep over the movable vertices; returns the number of moves kept.
+std::size_t smooth_vertices(RefineContext& c);
+
+}  // namespace cbr::refine

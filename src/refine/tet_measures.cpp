@@ -1,0 +1,114 @@
+#include "refine/tet_measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cbr::refine {
+namespace {
+
+using V = std::array<double, 3>;
+
+V sub(const double* p, const double* q) { return {p[0] - q[0], p[1] - q[1], p[2] - q[2]}; }
+V sub(const V& p, const V& q) { return {p[0] - q[0], p[1] - q[1], p[2] - q[2]}; }
+double dot(const V& p, const V& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; }
+double len(const V& p) { return std::sqrt(dot(p, p)); }
+V cross(const V& p, const V& q) { return {p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]}; }
+V mul(const V& p, double s) { return {p[0] * s, p[1] * s, p[2] * s}; }
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Edges from a, scaled so that the longest of the six edges is 1 (q and the
+// angles do not change; every product stays near 1). False if degenerate.
+bool unit_edges(const double* a, const double* b, const double* c, const double* d, V& u, V& v, V& w) {
+    u = sub(b, a);
+    v = sub(c, a);
+    w = sub(d, a);
+    const double longest = std::max({dot(u, u), dot(v, v), dot(w, w), dot(sub(v, u), sub(v, u)),
+                                     dot(sub(w, u), sub(w, u)), dot(sub(w, v), sub(w, v))});
+    if (!(longest > 0) || !std::isfinite(longest)) return false;
+    const double s = 1 / std::sqrt(longest);
+    u = mul(u, s);
+    v = mul(v, s);
+    w = mul(w, s);
+    return true;
+}
+
+}  // namespace
+
+double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
+    V u, v, w;
+    if (!unit_edges(a, b, c, d, u, v, w)) return 0;
+    const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+    const double det = dot(u, vw);  // 6 x signed volume
+    if (det == 0) return 0;
+    // r_in = |det| / (2 S), S = sum of face areas; r_circ = |N| / (2 |det|).
+    const double area2 = len(uv) + len(wu) + len(vw) + len(cross(sub(v, u), sub(w, u)));  // 2 S
+    const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
+    const V n = {uu * vw[0] + vv * wu[0] + ww * uv[0], uu * vw[1] + vv * wu[1] + ww * uv[1],
+                 uu * vw[2] + vv * wu[2] + ww * uv[2]};
+    const double q = 6 * det * det / (area2 * len(n));  // 3 * (|det| / 2S) / (|N| / 2|det|)
+    if (!std::isfinite(q)) return 0;
+    return std::clamp(q, 0.0, 1.0);
+}
+
+void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
+                    double& max_deg) {
+    V u, v, w;
+    if (!unit_edges(a, b, c, d, u, v, w)) {
+        min_deg = max_deg = 0;
+        return;
+    }
+    const V p[4] = {V{0, 0, 0}, u, v, w};
+    static constexpr int kEdge[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+    min_deg = 180;
+    max_deg = 0;
+    for (const auto& e : kEdge) {
+        const V axis = sub(p[e[1]], p[e[0]]);
+        const V n1 = cross(axis, sub(p[e[2]], p[e[0]])), n2 = cross(axis, sub(p[e[3]], p[e[0]]));
+        const double deg = std::atan2(len(cross(n1, n2)), dot(n1, n2)) * (180 / kPi);
+        min_deg = std::min(min_deg, deg);
+        max_deg = std::max(max_deg, deg);
+    }
+}
+
+bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre) {
+    const V u = sub(b, a), v = sub(c, a), w = sub(d, a);
+    const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+    const double det = dot(u, vw);
+    if (det == 0 || !std::isfinite(det)) return false;
+    const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
+    const double s = 1 / (2 * det);
+    for (int k = 0; k < 3; ++k) centre[k] = a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) * s;
+    return std::isfinite(centre[0]) && std::isfinite(centre[1]) && std::isfinite(centre[2]);
+}
+
+bool triangle_circumsphere(const double* a, const double* b, const double* c, Point& centre, double& radius2) {
+    const V u = sub(b, a), v = sub(c, a);
+    const V n = cross(u, v);
+    const double nn = dot(n, n);
+    if (!(nn > 0)) return false;
+    // centre - a = (|u|^2 (v x n) + |v|^2 (n x u)) / (2 |n|^2)
+    const V t1 = mul(cross(v, n), dot(u, u)), t2 = mul(cross(n, u), dot(v, v));
+    const V r = {(t1[0] + t2[0]) / (2 * nn), (t1[1] + t2[1]) / (2 * nn), (t1[2] + t2[2]) / (2 * nn)};
+    for (int k = 0; k < 3; ++k) centre[k] = a[k] + r[k];
+    radius2 = dot(r, r);
+    return std::isfinite(radius2);
+}
+
+double squared_distance(const double* p, const double* q) {
+    const V d = sub(p, q);
+    return dot(d, d);
+}
+
+double radius_edge_ratio(const double* a, const double* b, const double* c, const double* d) {
+    Point cc;
+    if (!circumcentre(a, b, c, d, cc)) return std::numeric_limits<double>::infinity();
+    const double r2 = squared_distance(cc.data(), a);
+    const double shortest = std::min({squared_distance(a, b), squared_distance(a, c), squared_distance(a, d),
+                                      squared_distance(b, c), squared_distance(b, d), squared_distance(c, d)});
+    if (!(shortest > 0)) return std::numeric_limits<double>::infinity();
+    return std::sqrt(r2 / shortest);
+}
+
+}  // namespace cbr::refine

@@ -1,0 +1,34 @@
+// Shape and size measures of one tetrahedron, in double: what refinement
+// and optimisation decide with, and what Table II reports (Du & Wang 2004,
+// §6, Table II). None of them decides validity: orientation is always
+// tested exactly (geom::orient3d) by the callers.
+#pragma once
+
+#include <array>
+
+namespace cbr::refine {
+
+using Point = std::array<double, 3>;
+
+// Radius ratio q = 3 r_in / r_circ: 1 for the regular tetrahedron, 0 for a
+// flat one (the paper's Table II measure). Orientation-blind (uses |volume|);
+// computed after scaling to unit longest edge, clamped to [0, 1].
+double radius_ratio(const double* a, const double* b, const double* c, const double* d);
+
+// Smallest and largest dihedral angle, in degrees.
+void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
+                    double& max_deg);
+
+// Circumcentre of abcd; false when the tetrahedron is flat in double.
+bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre);
+
+// Circumcentre and squared circumradius of triangle abc; false when flat.
+bool triangle_circumsphere(const double* a, const double* b, const double* c, Point& centre, double& radius2);
+
+double squared_distance(const double* p, const double* q);
+
+// Circumradius over shortest edge (the radius-edge ratio of Delaunay
+// refinement, TetGen's -q bound); +inf for a flat tetrahedron.
+double radius_edge_ratio(const double* a, const double* b, const double* c, const double* d);
+
+}  // namespace cbr::refine

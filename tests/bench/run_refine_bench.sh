@@ -1,0 +1,199 @@
+#!/usr/bin/env bash
+# Mesh generation benchmark: libcbr (`cbr mesh`, boundary recovery then
+# full mesh generation, Du & Wang 2004 section 6) against TetGen 1.5
+# (`tetgen -pYq1.414`, the Debian package: surface kept, radius-edge bound
+# 1.414) on the same surfaces, one after the other in the same run. Both
+# meshes are measured by the same code (refine_bench_table.py, the formulas
+# of src/cli/quality.hpp) and printed per mesh and in total: tetrahedra,
+# average and minimum quality q = 3 r_in / r_circ, minimum dihedral angle,
+# % of tetrahedra with q < 0.1, wall time, and the ratios libcbr / TetGen.
+#
+#   tests/bench/run_refine_bench.sh [options] [DATA_DIR] [SURFACE...]
+#
+#   DATA_DIR      directory of .off surfaces (default $CBR_SHARED_DATA_DIR,
+#                 else <repo>/../shared/data/surfaces)
+#   SURFACE...    only these surfaces: paths, or names in DATA_DIR with or
+#                 without .off (default: every *.off in DATA_DIR; surfaces
+#                 that cbr cannot recover yet are reported as FAILED)
+#   --size H      pass --size H to cbr mesh (TetGen gets -a with the volume
+#                 of a regular tetrahedron of edge H)
+#   --csv FILE    also write the table (per mesh, then the totals) as CSV
+#   --timeout S   seconds allowed to each run (default $CBR_BENCH_TIMEOUT or 300)
+#   --keep        keep the outputs (the work directory is printed)
+#
+# Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
+# <repo>/build-bench/refine). Extra CMake arguments: $CBR_BENCH_CMAKE_ARGS.
+# Installs the Debian package tetgen when it is missing (and says so).
+# gmsh is not run (optional in the issue; not installed here).
+#
+# Exit status: 0 when the benchmark ran (whatever each mesh did), 1 on a
+# bad command line or a failed build.
+set -eu
+
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(cd "$here/../.." && pwd)
+build=${CBR_BENCH_BUILD:-$repo/build-bench/refine}
+jobs=$(nproc 2>/dev/null || echo 2)
+extra=${CBR_BENCH_CMAKE_ARGS:-}
+limit=${CBR_BENCH_TIMEOUT:-300}
+data=
+csv=
+keep=0
+size=
+surfaces=()
+
+usage() {
+    sed -n '2,/^set -eu/p' "$0" | sed -e '/^set -eu/d' -e 's/^# \{0,1\}//' >&2
+    exit 1
+}
+
+while [ $# -gt 0 ]; do
+    case $1 in
+        --csv) [ $# -ge 2 ] || usage; csv=$2; shift 2 ;;
+        --csv=*) csv=${1#--csv=}; shift ;;
+        --size) [ $# -ge 2 ] || usage; size=$2; shift 2 ;;
+        --size=*) size=${1#--size=}; shift ;;
+        --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
+        --timeout=*) limit=${1#--timeout=}; shift ;;
+        --keep) keep=1; shift ;;
+        -h|--help) usage ;;
+        --) shift; break ;;
+        -*) echo "run_refine_bench.sh: unknown option '$1'" >&2; usage ;;
+        *)
+            if [ -z "$data" ] && [ ${#surfaces[@]} -eq 0 ] && [ -d "$1" ]; then
+                data=$1
+            else
+                surfaces+=("$1")
+            fi
+            shift ;;
+    esac
+done
+surfaces+=("$@")
+case $limit in ''|*[!0-9]*|0) echo "run_refine_bench.sh: --timeout needs whole seconds (at least 1)" >&2; exit 1 ;; esac
+if [ -n "$size" ] && ! awk -v s="$size" 'BEGIN { exit !(s + 0 > 0) }'; then
+    echo "run_refine_bench.sh: --size needs a length > 0" >&2
+    exit 1
+fi
+
+if [ -z "$data" ]; then
+    data=${CBR_SHARED_DATA_DIR:-$repo/../shared/data}/surfaces
+    [ -d "$data" ] || data=$repo/../shared/data/surfaces
+fi
+if [ ! -d "$data" ]; then
+    echo "run_refine_bench.sh: no data directory $data (give it as argument or CBR_SHARED_DATA_DIR)" >&2
+    exit 1
+fi
+data=$(cd "$data" && pwd)
+
+files=()
+if [ ${#surfaces[@]} -eq 0 ]; then
+    while IFS= read -r f; do files+=("$f"); done < <(find "$data" -maxdepth 1 -name '*.off' -type f | LC_ALL=C sort)
+else
+    for s in "${surfaces[@]}"; do
+        if [ -f "$s" ]; then
+            files+=("$(cd "$(dirname "$s")" && pwd)/$(basename "$s")")
+        elif [ -f "$data/$s" ]; then
+            files+=("$data/$s")
+        elif [ -f "$data/$s.off" ]; then
+            files+=("$data/$s.off")
+        else
+            echo "run_refine_bench.sh: no surface '$s' (neither a file nor in $data)" >&2
+            exit 1
+        fi
+    done
+fi
+if [ ${#files[@]} -eq 0 ]; then
+    echo "run_refine_bench.sh: no .off surface in $data" >&2
+    exit 1
+fi
+
+echo "== libcbr and cbr: Release build in $build"
+# shellcheck disable=SC2086  # $extra is a list of arguments
+cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCBR_BUILD_TESTS=OFF $extra >/dev/null
+cmake --build "$build" -j "$jobs" --target cbr_cli >/dev/null
+cbr=$build/cbr
+[ -x "$cbr" ] || { echo "run_refine_bench.sh: $cbr was not built" >&2; exit 1; }
+
+as_root() {
+    if [ "$(id -u)" -eq 0 ]; then "$@"; elif command -v sudo >/dev/null 2>&1; then sudo "$@"; else return 1; fi
+}
+have_tetgen=1
+if ! command -v tetgen >/dev/null 2>&1; then
+    echo "== tetgen is missing: installing the Debian package tetgen (apt-get install -y tetgen)"
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y tetgen >/dev/null 2>&1 || true
+    command -v tetgen >/dev/null 2>&1 || { echo "   could not install tetgen: its columns stay empty" >&2; have_tetgen=0; }
+fi
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/cbr-refine-bench.XXXXXX")
+if [ "$keep" -eq 1 ]; then
+    echo "== outputs kept in $work"
+else
+    trap 'rm -rf "$work"' EXIT
+    trap 'rm -rf "$work"; exit 130' INT TERM
+fi
+
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
+
+# Runs "$@" under the time limit; sets rc and secs. stdout/stderr go to $out/$err.
+timed() {
+    local t0 t1
+    t0=$(now)
+    rc=0
+    { timeout --kill-after=10 "$limit" "$@" >"$out" 2>"$err" </dev/null; } 2>/dev/null || rc=$?
+    t1=$(now)
+    secs=$(elapsed "$t0" "$t1")
+    if [ "$rc" -eq 124 ] || { [ "$rc" -eq 137 ] && awk -v s="$secs" -v l="$limit" 'BEGIN { exit !(s >= l) }'; }; then
+        rc=timeout
+    fi
+}
+
+size_args=()
+tg_area=
+if [ -n "$size" ]; then
+    size_args=(--size "$size")
+    tg_area=$(awk -v h="$size" 'BEGIN { printf "a%.17g", h * h * h / 8.48528137423857 }')
+fi
+
+raw=$work/raw.csv
+echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele" >"$raw"
+n=${#files[@]}
+i=0
+echo "== run: ${n} surfaces, ${limit} s limit per run${size:+, --size $size}"
+for f in "${files[@]}"; do
+    i=$((i + 1))
+    name=$(basename "$f" .off)
+    dir=$work/$name
+    mkdir -p "$dir/tetgen"
+
+    out=$dir/cbr.out err=$dir/cbr.err
+    timed "$cbr" mesh -q "$f" -o "$dir/cbr.node" "${size_args[@]}"
+    case $rc in
+        0) cbr_status=ok ;;
+        3) cbr_status=FAILED ;;
+        timeout) cbr_status=TIMEOUT ;;
+        *) cbr_status=ERROR ;;
+    esac
+    cbr_secs=$secs
+
+    tg_status='' tg_secs=''
+    if [ "$have_tetgen" -eq 1 ]; then
+        cp "$f" "$dir/tetgen/$name.off"
+        out=$dir/tetgen.out err=$dir/tetgen.err
+        timed tetgen "-pYq1.414${tg_area}Q" "$dir/tetgen/$name.off"
+        tg_secs=$secs
+        if [ "$rc" = timeout ]; then
+            tg_status=TIMEOUT
+        elif [ "$rc" -eq 0 ] && [ -s "$dir/tetgen/$name.1.ele" ]; then
+            tg_status=ok
+        else
+            tg_status=FAILED
+        fi
+    fi
+    echo "$name,$cbr_status,$cbr_secs,$dir/cbr.node,$dir/cbr.ele,$tg_status,$tg_secs,$dir/tetgen/$name.1.node,$dir/tetgen/$name.1.ele" >>"$raw"
+    printf '   [%d/%d] %-36s cbr %-7s %8s s   tetgen %-7s %8s s\n' "$i" "$n" "$name" "$cbr_status" "$cbr_secs" \
+        "${tg_status:-n/a}" "${tg_secs:--}"
+done
+
+echo
+python3 "$here/refine_bench_table.py" "$raw" ${csv:+--csv "$csv"}
