@@ -7,6 +7,7 @@
 #include <set>
 #include <numeric>
 
+#include "geom/flat_cone.hpp"
 #include "geom/orient2d.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
@@ -29,8 +30,6 @@ namespace {
 constexpr int kMaxHalvings = 40;
 // Tetrahedra a split may take in beyond the ball (grow_past_flat_faces).
 constexpr std::size_t kMaxTakenIn = 64;
-// As in protected_insertion.cpp: flatter than this sine counts as flat.
-constexpr double kFlatCone = 1e-12;
 
 // A sub-face at e, seen from the wedge on one side: (e, x, y) with its
 // normal into the wedge, i.e. the directed polygon edge x -> y.
@@ -53,22 +52,6 @@ struct Fan {
 int find_root(std::vector<int>& parent, int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
-}
-
-// Same measure as the cavity correction's (protected_insertion.cpp): the
-// cone of face abc and apex p is flat to within rounding.
-bool flat_cone(const double* a, const double* b, const double* c, const double* p) {
-    double x[3], y[3], z[3];
-    for (int i = 0; i < 3; ++i) {
-        x[i] = b[i] - a[i];
-        y[i] = c[i] - a[i];
-        z[i] = p[i] - a[i];
-    }
-    const double n[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-    const double det = n[0] * z[0] + n[1] * z[1] + n[2] * z[2];
-    const double scale =
-        std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]));
-    return std::fabs(det) <= kFlatCone * scale;
 }
 
 bool sees_all(const mesh::TetMesh& m, const std::vector<std::array<VertexId, 3>>& bounds, const double* s) {
@@ -133,7 +116,7 @@ void PointSplitting::grow_past_flat_faces(const double* pe, const std::map<TetId
         const int* k = kFaceVertices[f];
         const VertexId a = m_.vertex(t, k[0]), b = m_.vertex(t, k[1]), c = m_.vertex(t, k[2]);
         if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
-        if (!flat_cone(m_.point(a), m_.point(b), m_.point(c), pe)) continue;
+        if (!geom::flat_cone(m_.point(a), m_.point(b), m_.point(c), pe)) continue;
         const mesh::FacetRef across = m_.neighbor(t, f);
         const TetId n = mesh::facet_tet(across);
         if (m_.is_ghost(n) || ball.count(n) || taken.count(n)) continue;

@@ -18,10 +18,10 @@
 #include "recover/protected_insertion.hpp"
 
 #include <array>
-#include <cmath>
 #include <set>
 #include <unordered_set>
 
+#include "geom/flat_cone.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/surgery.hpp"
 
@@ -39,10 +39,6 @@ namespace {
 
 enum class Pass { kStable, kChanged, kStartLost };
 
-// Sine of the angle between a cone's face and its apex below which the
-// cone counts as flat (nearly_flat): far above rounding (1e-16), far below
-// any shape a mesh should keep.
-constexpr double kFlatCone = 1e-12;
 
 class Cavity {
 public:
@@ -249,24 +245,12 @@ bool Cavity::can_take_in(TetId t, int f, TetId n) const {
 // plane of a face can land a rounding error off it: the cone would be a
 // sliver flat to within rounding, positive only by chance, which later
 // steps cannot work with (no point sees past it). Such a face is treated
-// like a coplanar one: the tetrahedron beyond joins the cavity if it may.
+// like a coplanar one (geom/flat_cone.hpp).
 bool Cavity::nearly_flat(TetId t, int f) const {
     const VertexId* v = m_.vertices(t);
     if (v[3] == kGhostVertex) return false;
     const int* k = kFaceVertices[f];
-    const double* a = pt(v[k[0]]);
-    const double* b = pt(v[k[1]]);
-    const double* c = pt(v[k[2]]);
-    double x[3], y[3], z[3];
-    for (int i = 0; i < 3; ++i) {
-        x[i] = b[i] - a[i];
-        y[i] = c[i] - a[i];
-        z[i] = p_[i] - a[i];
-    }
-    const double n[3] = {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-    const double det = n[0] * z[0] + n[1] * z[1] + n[2] * z[2];
-    const double scale = std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]));
-    return std::fabs(det) <= kFlatCone * scale;
+    return geom::flat_cone(pt(v[k[0]]), pt(v[k[1]]), pt(v[k[2]]), p_);
 }
 
 // Keeps the face-connected component of start (through unprotected faces,
