@@ -10,7 +10,7 @@
 #
 #   tests/bench/run_refine_bench.sh [options] [DATA_DIR] [SURFACE...]
 #
-#   DATA_DIR      directory of .off surfaces (default $CBR_SHARED_DATA_DIR,
+#   DATA_DIR      directory of .off surfaces (default $CBR_SHARED_DATA_DIR/surfaces,
 #                 else <repo>/../shared/data/surfaces)
 #   SURFACE...    only these surfaces: paths, or names in DATA_DIR with or
 #                 without .off (default: every *.off in DATA_DIR; surfaces
@@ -32,6 +32,8 @@ set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
+# shellcheck source=bench_common.sh
+. "$here/bench_common.sh"
 build=${CBR_BENCH_BUILD:-$repo/build-bench/refine}
 jobs=$(nproc 2>/dev/null || echo 2)
 extra=${CBR_BENCH_CMAKE_ARGS:-}
@@ -75,44 +77,8 @@ if [ -n "$size" ] && ! awk -v s="$size" 'BEGIN { exit !(s + 0 > 0) }'; then
     exit 1
 fi
 
-if [ -z "$data" ]; then
-    data=${CBR_SHARED_DATA_DIR:-$repo/../shared/data}/surfaces
-    [ -d "$data" ] || data=$repo/../shared/data/surfaces
-fi
-if [ ! -d "$data" ]; then
-    echo "run_refine_bench.sh: no data directory $data (give it as argument or CBR_SHARED_DATA_DIR)" >&2
-    exit 1
-fi
-data=$(cd "$data" && pwd)
-
-files=()
-if [ ${#surfaces[@]} -eq 0 ]; then
-    while IFS= read -r f; do files+=("$f"); done < <(find "$data" -maxdepth 1 -name '*.off' -type f | LC_ALL=C sort)
-else
-    for s in "${surfaces[@]}"; do
-        if [ -f "$s" ]; then
-            files+=("$(cd "$(dirname "$s")" && pwd)/$(basename "$s")")
-        elif [ -f "$data/$s" ]; then
-            files+=("$data/$s")
-        elif [ -f "$data/$s.off" ]; then
-            files+=("$data/$s.off")
-        else
-            echo "run_refine_bench.sh: no surface '$s' (neither a file nor in $data)" >&2
-            exit 1
-        fi
-    done
-fi
-if [ ${#files[@]} -eq 0 ]; then
-    echo "run_refine_bench.sh: no .off surface in $data" >&2
-    exit 1
-fi
-
-echo "== libcbr and cbr: Release build in $build"
-# shellcheck disable=SC2086  # $extra is a list of arguments
-cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCBR_BUILD_TESTS=OFF $extra >/dev/null
-cmake --build "$build" -j "$jobs" --target cbr_cli >/dev/null
-cbr=$build/cbr
-[ -x "$cbr" ] || { echo "run_refine_bench.sh: $cbr was not built" >&2; exit 1; }
+bench_surfaces run_refine_bench.sh "$data" "${surfaces[@]}"
+bench_build_cbr run_refine_bench.sh
 
 as_root() {
     if [ "$(id -u)" -eq 0 ]; then "$@"; elif command -v sudo >/dev/null 2>&1; then sudo "$@"; else return 1; fi

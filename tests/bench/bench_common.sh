@@ -1,0 +1,54 @@
+# Shared by the benchmark scripts (sourced, bash): which surfaces to run
+# and the Release build of `cbr`.
+
+# bench_surfaces SCRIPT DATA [SURFACE...]: sets `data` (the directory of
+# the shared surfaces: DATA if given, else $CBR_SHARED_DATA_DIR/surfaces,
+# else ../shared/data/surfaces next to the repository `repo`) and `files`
+# (absolute paths: the SURFACEs, as paths or names in `data`, or every
+# .off in `data`). Exits with a message when there is none.
+bench_surfaces() {
+    local script=$1
+    data=$2
+    shift 2
+    if [ -z "$data" ]; then
+        data=${CBR_SHARED_DATA_DIR:-$repo/../shared/data}/surfaces
+    fi
+    if [ ! -d "$data" ]; then
+        echo "$script: no data directory $data (give it as argument or set CBR_SHARED_DATA_DIR)" >&2
+        exit 1
+    fi
+    data=$(cd "$data" && pwd)
+    files=()
+    if [ $# -eq 0 ]; then
+        while IFS= read -r f; do files+=("$f"); done < <(find "$data" -maxdepth 1 -name '*.off' -type f | LC_ALL=C sort)
+    else
+        local s
+        for s in "$@"; do
+            if [ -f "$s" ]; then
+                files+=("$(cd "$(dirname "$s")" && pwd)/$(basename "$s")")
+            elif [ -f "$data/$s" ]; then
+                files+=("$data/$s")
+            elif [ -f "$data/$s.off" ]; then
+                files+=("$data/$s.off")
+            else
+                echo "$script: no surface '$s' (neither a file nor in $data)" >&2
+                exit 1
+            fi
+        done
+    fi
+    if [ ${#files[@]} -eq 0 ]; then
+        echo "$script: no .off surface in $data" >&2
+        exit 1
+    fi
+}
+
+# bench_build_cbr SCRIPT: Release build of `cbr` from `repo` in `build`
+# (extra CMake arguments in `extra`, `jobs` in parallel); sets `cbr`.
+bench_build_cbr() {
+    echo "== libcbr and cbr: Release build in $build"
+    # shellcheck disable=SC2086  # $extra is a list of arguments
+    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCBR_BUILD_TESTS=OFF $extra >/dev/null
+    cmake --build "$build" -j "$jobs" --target cbr_cli >/dev/null
+    cbr=$build/cbr
+    [ -x "$cbr" ] || { echo "$1: $cbr was not built" >&2; exit 1; }
+}
