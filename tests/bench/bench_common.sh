@@ -52,3 +52,35 @@ bench_build_cbr() {
     cbr=$build/cbr
     [ -x "$cbr" ] || { echo "$1: $cbr was not built" >&2; exit 1; }
 }
+
+# bench_workdir TAG: a temporary directory in `work`, removed at exit unless
+# `keep` is 1.
+bench_workdir() {
+    work=$(mktemp -d "${TMPDIR:-/tmp}/cbr-$1-bench.XXXXXX")
+    if [ "$keep" -eq 1 ]; then
+        echo "== outputs kept in $work"
+    else
+        trap 'rm -rf "$work"' EXIT
+        trap 'rm -rf "$work"; exit 130' INT TERM
+    fi
+}
+
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
+
+# timed CMD...: runs it under the time limit `limit` (seconds); sets rc
+# (the exit code, or "timeout") and secs; stdout and stderr go to $out
+# and $err.
+timed() {
+    local t0 t1
+    t0=$(now)
+    rc=0
+    # (the braces keep the shell's own "Aborted" line for a crash off the terminal)
+    { timeout --kill-after=10 "$limit" "$@" >"$out" 2>"$err" </dev/null; } 2>/dev/null || rc=$?
+    t1=$(now)
+    secs=$(elapsed "$t0" "$t1")
+    # 124: the limit was hit; 137 (SIGKILL) after the limit: did not stop in time.
+    if [ "$rc" -eq 124 ] || { [ "$rc" -eq 137 ] && awk -v s="$secs" -v l="$limit" 'BEGIN { exit !(s >= l) }'; }; then
+        rc=timeout
+    fi
+}

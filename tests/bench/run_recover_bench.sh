@@ -119,31 +119,7 @@ if [ "$verify" -eq 1 ]; then
     fi
 fi
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/cbr-recover-bench.XXXXXX")
-if [ "$keep" -eq 1 ]; then
-    echo "== outputs kept in $work"
-else
-    trap 'rm -rf "$work"' EXIT
-    trap 'rm -rf "$work"; exit 130' INT TERM
-fi
-
-now() { date +%s.%N; }
-elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
-
-# Runs "$@" under the time limit; sets rc and secs. stdout/stderr go to $out/$err.
-timed() {
-    local t0 t1
-    t0=$(now)
-    rc=0
-    # (the braces keep the shell's own "Aborted" line for a crash off the terminal)
-    { timeout --kill-after=10 "$limit" "$@" >"$out" 2>"$err" </dev/null; } 2>/dev/null || rc=$?
-    t1=$(now)
-    secs=$(elapsed "$t0" "$t1")
-    # 124: the limit was hit; 137 (SIGKILL) after the limit: did not stop in time.
-    if [ "$rc" -eq 124 ] || { [ "$rc" -eq 137 ] && awk -v s="$secs" -v l="$limit" 'BEGIN { exit !(s >= l) }'; }; then
-        rc=timeout
-    fi
-}
+bench_workdir recover
 
 # The number after a Table I label that cbr prints (src/cli/table_one.cpp:
 # "  recovered by flips   4"); stdout first, stderr as well.

@@ -90,29 +90,7 @@ if ! command -v tetgen >/dev/null 2>&1; then
     command -v tetgen >/dev/null 2>&1 || { echo "   could not install tetgen: its columns stay empty" >&2; have_tetgen=0; }
 fi
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/cbr-refine-bench.XXXXXX")
-if [ "$keep" -eq 1 ]; then
-    echo "== outputs kept in $work"
-else
-    trap 'rm -rf "$work"' EXIT
-    trap 'rm -rf "$work"; exit 130' INT TERM
-fi
-
-now() { date +%s.%N; }
-elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
-
-# Runs "$@" under the time limit; sets rc and secs. stdout/stderr go to $out/$err.
-timed() {
-    local t0 t1
-    t0=$(now)
-    rc=0
-    { timeout --kill-after=10 "$limit" "$@" >"$out" 2>"$err" </dev/null; } 2>/dev/null || rc=$?
-    t1=$(now)
-    secs=$(elapsed "$t0" "$t1")
-    if [ "$rc" -eq 124 ] || { [ "$rc" -eq 137 ] && awk -v s="$secs" -v l="$limit" 'BEGIN { exit !(s >= l) }'; }; then
-        rc=timeout
-    fi
-}
+bench_workdir refine
 
 size_args=()
 tg_area=
