@@ -19,56 +19,19 @@
 #include "mesh/flips.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/surgery.hpp"
+#include "mesh_test_util.hpp"
 #include "test_util.hpp"
 
 using namespace cbr::mesh;
 
 namespace {
 
-using Tet = std::array<VertexId, 4>;
-using Key3 = std::array<VertexId, 3>;
+using cbr::test::build_mesh;
+using cbr::test::delaunay_mesh;
+using cbr::test::face_key;
+using cbr::test::Key3;
+using cbr::test::Tet;
 using Rng = std::mt19937_64;
-
-// --- building meshes --------------------------------------------------------
-
-TetMesh delaunay_mesh(const std::vector<double>& xyz) {
-    cbr::delaunay::Delaunay d;
-    REQUIRE(d.insert_points(xyz.data(), xyz.size() / 3).ok);
-    return d.mesh();
-}
-
-Key3 face_key(const TetMesh& m, TetId t, int f) {
-    Key3 k = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]), m.vertex(t, kFaceVertices[f][2])};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
-// A mesh from positively oriented finite tetrahedra: ghosts close every
-// unshared face, links by matching faces.
-TetMesh build_mesh(const std::vector<double>& xyz, const std::vector<Tet>& tets) {
-    TetMesh m;
-    m.add_points(xyz.data(), xyz.size() / 3);
-    std::map<Key3, std::vector<FacetRef>> faces;
-    for (const Tet& v : tets) {
-        const TetId t = m.allocate_tet();
-        m.set_vertices(t, v[0], v[1], v[2], v[3]);
-        for (int f = 0; f < 4; ++f) faces[face_key(m, t, f)].push_back(make_facet(t, f));
-    }
-    std::vector<std::pair<TetId, int>> hull;
-    for (const auto& [key, refs] : faces)
-        if (refs.size() == 1) hull.push_back({facet_tet(refs[0]), facet_face(refs[0])});
-    for (const auto& [t, f] : hull) {
-        const TetId g = m.allocate_tet();  // (a, c, b, oo): oo on the outer side
-        m.set_vertices(g, m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][2]),
-                       m.vertex(t, kFaceVertices[f][1]), kGhostVertex);
-        for (int h = 0; h < 4; ++h) faces[face_key(m, g, h)].push_back(make_facet(g, h));
-    }
-    for (const auto& [key, refs] : faces) {
-        REQUIRE(refs.size() == 2);
-        m.link(refs[0], refs[1]);
-    }
-    return m;
-}
 
 // --- whole-mesh observations ------------------------------------------------
 

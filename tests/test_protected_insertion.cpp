@@ -17,6 +17,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/mesh_check.hpp"
 #include "recover/protected_insertion.hpp"
+#include "mesh_test_util.hpp"
 #include "test_util.hpp"
 
 using namespace cbr::mesh;
@@ -26,31 +27,12 @@ using cbr::recover::ProtectedInsertResult;
 
 namespace {
 
-using Key3 = std::array<VertexId, 3>;
+using cbr::test::face_key;
+using cbr::test::Key3;
+using cbr::test::live_finite;
+using cbr::test::locate;
 using Point = std::array<double, 3>;
 
-Key3 face_key(const TetMesh& m, TetId t, int f) {
-    Key3 k = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]), m.vertex(t, kFaceVertices[f][2])};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
-bool live_finite(const TetMesh& m, TetId t) { return !m.is_free(t) && !m.is_ghost(t); }
-
-// Brute force: a live finite tetrahedron containing q (closed).
-TetId locate(const TetMesh& m, const double* q) {
-    for (TetId t = 0; t < m.slot_count(); ++t) {
-        if (!live_finite(m, t)) continue;
-        bool inside = true;
-        for (int f = 0; f < 4 && inside; ++f) {
-            const int* k = kFaceVertices[f];
-            inside = cbr::geom::orient3d(m.point(m.vertex(t, k[0])), m.point(m.vertex(t, k[1])),
-                                         m.point(m.vertex(t, k[2])), q) >= 0;
-        }
-        if (inside) return t;
-    }
-    return kNoTet;
-}
 
 void mark_constraint(TetMesh& m, TetId t, int f, std::set<Key3>& marked) {
     const FacetRef r = m.neighbor(t, f);

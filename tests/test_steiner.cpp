@@ -24,6 +24,7 @@
 #include "recover/protected_insertion.hpp"
 #include "recover/steiner_repositioning.hpp"
 #include "recover/steiner_suppression.hpp"
+#include "mesh_test_util.hpp"
 #include "test_util.hpp"
 
 using namespace cbr::mesh;
@@ -31,24 +32,16 @@ using namespace cbr::recover;
 
 namespace {
 
-using Tet = std::array<VertexId, 4>;
-using Key3 = std::array<VertexId, 3>;
+using cbr::test::build_mesh;
+using cbr::test::delaunay_mesh;
+using cbr::test::face_key;
+using cbr::test::Key3;
+using cbr::test::live_finite;
+using cbr::test::locate;
+using cbr::test::Tet;
 using Edge = std::array<VertexId, 2>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-TetMesh delaunay_mesh(const std::vector<double>& xyz) {
-    cbr::delaunay::Delaunay d;
-    REQUIRE(d.insert_points(xyz.data(), xyz.size() / 3).ok);
-    return d.mesh();
-}
-
-Key3 face_key(const TetMesh& m, TetId t, int f) {
-    Key3 k = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]), m.vertex(t, kFaceVertices[f][2])};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
-bool live_finite(const TetMesh& m, TetId t) { return !m.is_free(t) && !m.is_ghost(t); }
 
 void mark_face(TetMesh& m, TetId t, int f) {
     const FacetRef r = m.neighbor(t, f);
@@ -151,21 +144,6 @@ void check_valid(const TetMesh& m) {
     }
     const CheckReport rep = check_mesh(c);
     REQUIRE_MESSAGE(rep.ok(), (rep.errors.empty() ? std::string() : rep.errors[0]));
-}
-
-// Brute force: a live finite tetrahedron containing q (closed).
-TetId locate(const TetMesh& m, const double* q) {
-    for (TetId t = 0; t < m.slot_count(); ++t) {
-        if (!live_finite(m, t)) continue;
-        bool inside = true;
-        for (int f = 0; f < 4 && inside; ++f) {
-            const int* k = kFaceVertices[f];
-            inside = cbr::geom::orient3d(m.point(m.vertex(t, k[0])), m.point(m.vertex(t, k[1])),
-                                         m.point(m.vertex(t, k[2])), q) >= 0;
-        }
-        if (inside) return t;
-    }
-    return kNoTet;
 }
 
 TetId any_tet_of(const TetMesh& m, VertexId v) {
@@ -386,28 +364,7 @@ Prism schonhardt_with_centre() {
         const VertexId j = (i + 1) % 3;
         tets.push_back(oriented({i, j, 3 + j, 3 + i}));
     }
-    // Build the mesh: ghosts close the unshared faces, links by faces.
-    TetMesh& m = out.m;
-    m.add_points(xyz.data(), xyz.size() / 3);
-    std::map<Key3, std::vector<FacetRef>> faces;
-    for (const Tet& v : tets) {
-        const TetId t = m.allocate_tet();
-        m.set_vertices(t, v[0], v[1], v[2], v[3]);
-        for (int f = 0; f < 4; ++f) faces[face_key(m, t, f)].push_back(make_facet(t, f));
-    }
-    std::vector<std::pair<TetId, int>> hull;
-    for (const auto& [key, refs] : faces)
-        if (refs.size() == 1) hull.push_back({facet_tet(refs[0]), facet_face(refs[0])});
-    for (const auto& [t, f] : hull) {
-        const TetId g = m.allocate_tet();
-        m.set_vertices(g, m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][2]),
-                       m.vertex(t, kFaceVertices[f][1]), kGhostVertex);
-        for (int h = 0; h < 4; ++h) faces[face_key(m, g, h)].push_back(make_facet(g, h));
-    }
-    for (const auto& [key, refs] : faces) {
-        REQUIRE(refs.size() == 2);
-        m.link(refs[0], refs[1]);
-    }
+    out.m = build_mesh(xyz, tets);
     return out;
 }
 
