@@ -39,18 +39,41 @@ int vertex_index(const TetMesh& m, TetId t, VertexId v) {
     return -1;
 }
 
+namespace {
+
+// Membership in a growing list of tetrahedra: a linear scan while the list
+// is short (a ball has a few dozen tetrahedra; no allocation per call), a
+// hash set once it is long (the ball of the infinite vertex is the hull).
+class Visited {
+public:
+    explicit Visited(const std::vector<TetId>& list) : list_(list) {}
+    bool contains(TetId t) {
+        if (list_.size() <= kLinear) return std::find(list_.begin(), list_.end(), t) != list_.end();
+        for (; indexed_ < list_.size(); ++indexed_) set_.insert(list_[indexed_]);
+        return set_.count(t) != 0;
+    }
+
+private:
+    static constexpr std::size_t kLinear = 64;
+    const std::vector<TetId>& list_;
+    std::unordered_set<TetId> set_;
+    std::size_t indexed_ = 0;
+};
+
+}  // namespace
+
 bool ball(const TetMesh& m, VertexId v, TetId start, std::vector<TetId>& out) {
     out.clear();
     if (!live(m, start) || vertex_index(m, start, v) < 0) return false;
-    std::unordered_set<TetId> seen = {start};
     out.push_back(start);
+    Visited seen(out);
     // Breadth-first over the faces that contain v (all but the one opposite v).
     for (std::size_t next = 0; next < out.size(); ++next) {
         const TetId t = out[next];
         for (int f = 0; f < 4; ++f) {
             if (m.vertex(t, f) == v) continue;
             const TetId n = facet_tet(m.neighbor(t, f));
-            if (seen.insert(n).second) out.push_back(n);
+            if (!seen.contains(n)) out.push_back(n);
         }
     }
     return true;
@@ -83,10 +106,20 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
 }
 
 TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
-    std::vector<TetId> tets;
-    if (!ball(m, u, start, tets)) return kNoTet;
-    for (TetId t : tets)
+    // The breadth-first walk of ball(), stopping at the first tetrahedron
+    // that has v.
+    if (!live(m, start) || vertex_index(m, start, u) < 0) return kNoTet;
+    std::vector<TetId> tets{start};
+    Visited seen(tets);
+    for (std::size_t next = 0; next < tets.size(); ++next) {
+        const TetId t = tets[next];
         if (vertex_index(m, t, v) >= 0) return t;
+        for (int f = 0; f < 4; ++f) {
+            if (m.vertex(t, f) == u) continue;
+            const TetId n = facet_tet(m.neighbor(t, f));
+            if (!seen.contains(n)) tets.push_back(n);
+        }
+    }
     return kNoTet;
 }
 
