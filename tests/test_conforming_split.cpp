@@ -223,6 +223,7 @@ bool on_some_input_triangle(const TetMesh& m, const ConstraintFaces& faces, Vert
 struct SplitStats {
     std::size_t edge_points = 0, face_points = 0, steiner = 0;
     std::size_t max_fans = 0;  // input triangles at one edge point
+    std::size_t absorbed = 0;  // Steiner points a later split's grown wedge took in
 };
 
 // Conforming recovery of every face of `missing`, with its checks, then
@@ -308,25 +309,36 @@ SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
     // Splitting, edge points first.
     PointSplitting ps(m, sp, cr.incident());
     std::vector<VertexId> steiner;
-    std::size_t split_off = 0;
+    std::size_t split_off = 0, absorbed = 0;
     const std::vector<VertexId> added = sp.added_in_order();
     for (const bool edges : {true, false}) {
         for (VertexId e : added) {
             if (!sp.is_added(e) || sp.on_edge(e, nullptr, nullptr, nullptr) != edges) continue;
             INFO("splitting added point " << e << (edges ? " (edge)" : " (face)"));
             const std::size_t before = added_now(sp);
-            const std::size_t steiner_before = steiner.size();
+            const std::vector<VertexId> steiner_before = steiner;
             const std::size_t vertices_before = m.vertex_count();
             REQUIRE_MESSAGE(ps.split(e, steiner), ps.why());
             ++split_off;
-            require_valid_but_unused(m, split_off, "after split");
+            // Earlier Steiner points a grown wedge took in whole are gone
+            // from the list and from every tetrahedron; the others stay, in
+            // order, and the new ones follow.
+            std::size_t absorbed_now = 0;
+            for (VertexId s : steiner_before)
+                if (std::find(steiner.begin(), steiner.end(), s) == steiner.end()) {
+                    ++absorbed_now;
+                    CHECK_FALSE(used_by_a_tet(m, s));
+                }
+            absorbed += absorbed_now;
+            require_valid_but_unused(m, split_off + absorbed, "after split");
             CHECK(added_now(sp) == before - 1);
             CHECK_FALSE(sp.is_added(e));
             CHECK_FALSE(used_by_a_tet(m, e));
-            CHECK(steiner.size() > steiner_before);
-            CHECK(steiner.size() - steiner_before == m.vertex_count() - vertices_before);
-            for (std::size_t i = steiner_before; i < steiner.size(); ++i) {
-                CHECK(steiner[i] == vertices_before + (i - steiner_before));
+            const std::size_t made = m.vertex_count() - vertices_before;
+            CHECK(made > 0);
+            REQUIRE(steiner.size() == steiner_before.size() - absorbed_now + made);
+            for (std::size_t i = steiner.size() - made; i < steiner.size(); ++i) {
+                CHECK(steiner[i] == vertices_before + (i - (steiner.size() - made)));
                 CHECK_MESSAGE(!on_some_input_triangle(m, faces, steiner[i]), "Steiner point on the surface");
                 CHECK(used_by_a_tet(m, steiner[i]));
             }
@@ -350,9 +362,10 @@ SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
     // Every Steiner point is still off the surface (none moved).
     for (VertexId s : steiner) CHECK_FALSE(on_some_input_triangle(m, faces, s));
     CHECK(cbr::recover::mark_present_faces(m, faces).empty());
-    require_valid_but_unused(m, split_off, "at the end");
-    // Compacted, the mesh is valid as a whole: the split-off points were the
-    // only unused vertices and the Steiner points are renumbered after the
+    require_valid_but_unused(m, split_off + absorbed, "at the end");
+    CHECK(ps.made() == steiner.size() + absorbed);
+    // Compacted, the mesh is valid as a whole: the split-off and absorbed
+    // points were the only unused vertices and the Steiner points are renumbered after the
     // input ones.
     std::vector<VertexId> kept = steiner;
     compact_vertices_from(m, c.input_count, kept);
@@ -360,6 +373,7 @@ SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
     CHECK(kept.size() == steiner.size());
     CHECK(m.vertex_count() == c.input_count + steiner.size());
     st.steiner = steiner.size();
+    st.absorbed = absorbed;
     return st;
 }
 
@@ -840,7 +854,7 @@ TEST_CASE("conforming recovery and splitting: points inside a face (ball transfo
     // pierced by short edges between points just above and just below it.
     // Conforming recovery (no flips first) puts points inside the face,
     // with several points per face their balls overlap.
-    std::size_t total_face_points = 0, most = 0;
+    std::size_t total_face_points = 0, most = 0, total_absorbed = 0;
     for (int mask = 1; mask < 64; ++mask)
         for (const double far : {0.0, 15.0, 25.0}) {
             INFO("mask " << mask << ", far points at " << far);
@@ -852,10 +866,15 @@ TEST_CASE("conforming recovery and splitting: points inside a face (ball transfo
             const SplitStats st = conform_and_split(c, missing);
             total_face_points += st.face_points;
             most = std::max(most, st.face_points);
+            total_absorbed += st.absorbed;
         }
-    MESSAGE("pierced tetrahedron surfaces: " << total_face_points << " face points, up to " << most << " in one case");
+    MESSAGE("pierced tetrahedron surfaces: " << total_face_points << " face points, up to " << most
+                                              << " in one case; " << total_absorbed << " Steiner points absorbed");
     CHECK(total_face_points > 50);
     CHECK(most >= 8);
+    // Crowded faces leave wedges no point near e sees whole: they grow
+    // towards a target and take in earlier Steiner points.
+    CHECK(total_absorbed > 0);
 }
 
 TEST_CASE("conforming recovery and splitting: a non-manifold edge (three triangles)") {
@@ -1051,7 +1070,7 @@ TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, th
     // "p coincides with a vertex of the mesh").
     for (int mask = 1; mask < 32; ++mask)
         for (const bool far : {false, true}) {
-            INFO("mask " << mask << (far ? " with" : " without") << " far points");
+            INFO("mask " << mask << std::string(far ? " with" : " without") << " far points");
             const cbr::test::Polyhedron p = pierced_triangle(mask, far, true);
             Case c;
             build(c, p.xyz, p.tris);

@@ -4,8 +4,9 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <set>
 #include <numeric>
+#include <set>
+#include <unordered_set>
 
 #include "geom/flat_cone.hpp"
 #include "geom/orient2d.hpp"
@@ -28,8 +29,14 @@ namespace {
 // shortest edge is far below any placement that rounding can still tell
 // from e.
 constexpr int kMaxHalvings = 40;
-// Tetrahedra a split may take in beyond the ball (grow_past_flat_faces).
-constexpr std::size_t kMaxTakenIn = 64;
+// Tetrahedra one growth of a wedge may take in beyond the ball
+// (grow_wedge): past flat faces, and towards a target point (enough to
+// take in the balls of a few earlier Steiner points).
+constexpr std::size_t kMaxTakenPastFlat = 64;
+constexpr std::size_t kMaxTakenTowardsTarget = 4096;
+// A placement nearer to e than this fraction of the ball's shortest edge
+// is thin: the wedge is grown instead where it can be (place_by_growing).
+constexpr double kThinPlacement = 1e-3;
 
 // A sub-face at e, seen from the wedge on one side: (e, x, y) with its
 // normal into the wedge, i.e. the directed polygon edge x -> y.
@@ -52,6 +59,10 @@ struct Fan {
 int find_root(std::vector<int>& parent, int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
+}
+
+double distance(const double* p, const double* q) {
+    return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
 }
 
 bool sees_all(const mesh::TetMesh& m, const std::vector<std::array<VertexId, 3>>& bounds, const double* s) {
@@ -102,36 +113,112 @@ bool PointSplitting::place_in_wedge(const double* pe, const double* d,
     return false;
 }
 
-// The §5.1 cavity correction applied to a wedge: a far face that e lies on
-// up to rounding (a flat cone: e and the face's vertices are surface
-// points of nearly coplanar triangles) leaves no room for a Steiner point
-// behind it, so the tetrahedron beyond it joins the wedge — unless the face
-// is a constraint or a sub-face, or that tetrahedron touches the ball or
-// another wedge's additions.
-void PointSplitting::grow_past_flat_faces(const double* pe, const std::map<TetId, int>& ball,
-                                          std::vector<mesh::FacetRef>& links, std::set<TetId>& taken) const {
-    for (std::size_t i = 0; i < links.size() && taken.size() < kMaxTakenIn; ++i) {
+// Grows wedge w past the far faces `cross` selects: the tetrahedron beyond
+// such a face joins the wedge (its other faces become far faces, or
+// interior ones where they meet the wedge) — unless the face is a
+// constraint or a sub-face, or that tetrahedron is a ghost, in the ball or
+// already taken by a wedge. At most `limit` tetrahedra are taken in.
+// The region stays a set of whole tetrahedra, so whatever point sees all
+// its boundary faces can cone it (tested exactly by the caller).
+void PointSplitting::grow_wedge(int w, const std::map<TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
+                                std::map<TetId, int>& taken, const CrossTest& cross,
+                                std::size_t limit) const {
+    const auto in_wedge = [&](TetId t) {
+        const auto b = ball_wedge.find(t);
+        if (b != ball_wedge.end()) return b->second == w;
+        const auto k = taken.find(t);
+        return k != taken.end() && k->second == w;
+    };
+    // One pass over a growing list: whether a face may be crossed never
+    // changes, except that a tetrahedron once taken is not taken again; a
+    // far face that ends up inside the wedge is dropped at the end.
+    std::unordered_set<mesh::FacetRef> inside;
+    std::size_t grown = 0;
+    for (std::size_t i = 0; i < links.size() && grown < limit; ++i) {
+        if (inside.count(links[i])) continue;
         const TetId t = mesh::facet_tet(links[i]);
         const int f = mesh::facet_face(links[i]);
         const int* k = kFaceVertices[f];
         const VertexId a = m_.vertex(t, k[0]), b = m_.vertex(t, k[1]), c = m_.vertex(t, k[2]);
         if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
-        if (!geom::flat_cone(m_.point(a), m_.point(b), m_.point(c), pe)) continue;
+        if (!cross(m_.point(a), m_.point(b), m_.point(c))) continue;
         const mesh::FacetRef across = m_.neighbor(t, f);
         const TetId n = mesh::facet_tet(across);
-        if (m_.is_ghost(n) || ball.count(n) || taken.count(n)) continue;
-        bool touches = false;
+        if (m_.is_ghost(n) || ball_wedge.count(n) || taken.count(n)) continue;
+        taken[n] = w;
+        ++grown;
+        inside.insert(links[i]);
         for (int g = 0; g < 4; ++g) {
-            const TetId x = mesh::facet_tet(m_.neighbor(n, g));
-            if (g != mesh::facet_face(across) && (ball.count(x) || taken.count(x))) touches = true;
+            if (g == mesh::facet_face(across)) continue;
+            const mesh::FacetRef beyond = m_.neighbor(n, g);
+            if (in_wedge(mesh::facet_tet(beyond))) {
+                inside.insert(beyond);  // now between two tetrahedra of the wedge
+            } else {
+                links.push_back(mesh::make_facet(n, g));
+            }
         }
-        if (touches) continue;
-        taken.insert(n);
-        links.erase(links.begin() + static_cast<std::ptrdiff_t>(i));
-        for (int g = 0; g < 4; ++g)
-            if (g != mesh::facet_face(across)) links.push_back(mesh::make_facet(n, g));
-        i = static_cast<std::size_t>(-1);  // the new faces may be flat too: start over
     }
+    links.erase(std::remove_if(links.begin(), links.end(), [&](mesh::FacetRef r) { return inside.count(r) != 0; }),
+                links.end());
+}
+
+// Every vertex of the replaced tetrahedra but e is still used — except
+// Steiner points of earlier splits that a grown wedge took in whole: the
+// new Steiner point replaces them (listed in `absorbed`). Input vertices
+// and added points are never lost.
+bool PointSplitting::keeps_vertices(const std::vector<TetId>& old, const std::vector<std::array<VertexId, 4>>& fresh,
+                                    VertexId e, std::vector<VertexId>& absorbed) const {
+    std::set<VertexId> kept, lost;
+    for (const auto& t : fresh) kept.insert(t.begin(), t.end());
+    for (TetId t : old)
+        for (int i = 0; i < 4; ++i) {
+            const VertexId v = m_.vertex(t, i);
+            if (v == e || v == kGhostVertex || kept.count(v)) continue;
+            if (v < points_.first_new_vertex() || points_.is_added(v)) return false;
+            lost.insert(v);
+        }
+    absorbed.assign(lost.begin(), lost.end());
+    return true;
+}
+
+// When no point of the wedge sees all of it — far faces of nearly
+// coplanar surface points cut it down to a sliver near e — a target s_t
+// on the ray e + eps u, in front of every polygon triangle, is chosen,
+// and the wedge grows past every far face s_t does not see (the §5.1
+// cavity correction, driven by the point instead of by flatness). Targets
+// from a quarter of the ball's shortest edge down, until one sees the
+// whole grown wedge; the wedge is left as it was otherwise.
+bool PointSplitting::place_by_growing(int w, const double* pe, const double* d,
+                                      const std::vector<std::array<VertexId, 3>>& poly, double shortest,
+                                      const std::map<TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
+                                      std::map<TetId, int>& taken, std::array<double, 3>& s) const {
+    const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(dl > 0)) return false;
+    for (double f = 0.25; f >= kThinPlacement; f *= 0.25) {
+        for (int k = 0; k < 3; ++k) s[k] = pe[k] + f * shortest * d[k] / dl;
+        if (!sees_all(m_, poly, s.data())) continue;
+        std::vector<mesh::FacetRef> grown = links;
+        std::map<TetId, int> grown_taken = taken;
+        const double* st = s.data();
+        grow_wedge(w, ball_wedge, grown, grown_taken, [st](const double* a, const double* b, const double* c) {
+            return geom::orient3d(a, b, c, st) <= 0;
+        }, kMaxTakenTowardsTarget);
+        bool all = true;
+        for (const mesh::FacetRef r : grown) {
+            const TetId t = mesh::facet_tet(r);
+            const int* k = kFaceVertices[mesh::facet_face(r)];
+            if (geom::orient3d(m_.point(m_.vertex(t, k[0])), m_.point(m_.vertex(t, k[1])),
+                               m_.point(m_.vertex(t, k[2])), st) <= 0) {
+                all = false;
+                break;
+            }
+        }
+        if (!all) continue;
+        links = std::move(grown);
+        taken = std::move(grown_taken);
+        return true;
+    }
+    return false;
 }
 
 bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
@@ -173,6 +260,8 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         wedge_of[i] = wedge_id[r];
     }
     const int nw = static_cast<int>(wedge_id.size());
+    std::map<TetId, int> ball_wedge;
+    for (int i = 0; i < nb; ++i) ball_wedge[ball[i]] = wedge_of[i];
     for (FanFace& ff : fan_faces) ff.wedge = wedge_of[ff.wedge];
     if (nw < 2) return fail("the sub-faces around an added point do not cut its ball");
 
@@ -239,7 +328,7 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         }
     std::vector<std::array<VertexId, 4>> fresh;
     std::vector<TetId> extra_old;
-    std::set<TetId> taken;  // tetrahedra outside the ball that a wedge took in
+    std::map<TetId, int> taken;  // tetrahedra outside the ball that a wedge took in, and the wedge
     std::vector<std::array<double, 3>> apexes;  // coordinates of the Steiner points, in wedge order
     for (int w = 0; w < nw; ++w) {
         std::vector<mesh::FacetRef> links;  // the wedge's faces opposite e
@@ -279,42 +368,65 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
             for (const auto& b : poly) fresh.push_back({b[0], b[1], b[2], kGhostVertex});
             continue;
         }
-        grow_past_flat_faces(pe, index, links, taken);
+        // §5.1 cavity correction: a far face that e lies on up to rounding
+        // (a flat cone: e and the face's vertices are surface points of
+        // nearly coplanar triangles) leaves no room behind it.
+        grow_wedge(w, ball_wedge, links, taken, [pe](const double* a, const double* b, const double* c) {
+            return geom::flat_cone(a, b, c, pe);
+        }, kMaxTakenPastFlat);
         std::vector<std::array<VertexId, 3>> bounds;  // boundary faces, normals into the wedge
         std::vector<TetId> beyond;                     // ghosts across the far faces
-        for (const mesh::FacetRef r : links) {
-            const TetId t = mesh::facet_tet(r);
-            const int* k = kFaceVertices[mesh::facet_face(r)];
-            bounds.push_back({m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])});
-            const TetId across = mesh::facet_tet(m_.neighbor(t, mesh::facet_face(r)));
-            if (m_.is_ghost(across)) beyond.push_back(across);
-        }
-        const std::size_t far_faces = bounds.size();
-        bounds.insert(bounds.end(), poly.begin(), poly.end());
+        const auto collect_bounds = [&]() {
+            bounds.clear();
+            beyond.clear();
+            for (const mesh::FacetRef r : links) {
+                const TetId t = mesh::facet_tet(r);
+                const int* k = kFaceVertices[mesh::facet_face(r)];
+                bounds.push_back({m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])});
+                const TetId across = mesh::facet_tet(m_.neighbor(t, mesh::facet_face(r)));
+                if (m_.is_ghost(across)) beyond.push_back(across);
+            }
+            bounds.insert(bounds.end(), poly.begin(), poly.end());
+        };
+        collect_bounds();
+        const std::size_t far_faces = links.size();
         std::array<double, 3> s{};
-        if (!place_in_wedge(pe, d, bounds, shortest, s)) {
+        bool placed = place_in_wedge(pe, d, bounds, shortest, s);
+        const bool thin = placed && distance(s.data(), pe) < kThinPlacement * shortest;
+        if (!placed && beyond.size() == far_faces) {
             // A flat wedge between the fans and hull faces (an added point on
             // a coplanar hull face whose other diagonal the Delaunay mesh
             // has, nudged inside the hull): the wedge and the ghosts beyond
             // it become the ghosts of the polygon triangles, which are then
             // hull faces. replace_tets checks that the hull stays convex.
-            if (beyond.size() != far_faces)
-                return fail("no Steiner point position sees the whole wedge of an added point");
             extra_old.insert(extra_old.end(), beyond.begin(), beyond.end());
             for (const auto& b : poly) fresh.push_back({b[0], b[1], b[2], kGhostVertex});
             continue;
         }
+        // A thin placement would leave a Steiner point next to the surface,
+        // where it blocks the splits after it: grow instead where possible.
+        if (!placed || thin) {
+            std::array<double, 3> grown_s{};
+            if (place_by_growing(w, pe, d, poly, shortest, ball_wedge, links, taken, grown_s)) {
+                s = grown_s;
+                placed = true;
+            }
+        }
+        if (!placed) return fail("no Steiner point position sees the whole wedge of an added point");
+        collect_bounds();
         const VertexId id = static_cast<VertexId>(m_.vertex_count() + apexes.size());
         apexes.push_back(s);
         for (const auto& b : bounds) fresh.push_back({b[0], b[1], b[2], id});
     }
 
+    std::vector<TetId> old = ball;
+    old.insert(old.end(), extra_old.begin(), extra_old.end());
+    for (const auto& [t, w] : taken) old.push_back(t);
+    std::vector<VertexId> absorbed;  // earlier Steiner points a grown wedge took in
+    if (!keeps_vertices(old, fresh, e, absorbed)) return fail("the new tetrahedra would lose a vertex");
     const std::size_t before = m_.vertex_count();
     for (const auto& s : apexes) m_.add_points(s.data(), 1);
     std::vector<TetId> created;
-    std::vector<TetId> old = ball;
-    old.insert(old.end(), extra_old.begin(), extra_old.end());
-    old.insert(old.end(), taken.begin(), taken.end());
     const mesh::ReplaceResult r = mesh::replace_tets(m_, old, fresh, &created);
     if (r != mesh::ReplaceResult::kDone) {
         m_.truncate_vertices(before);
@@ -325,9 +437,14 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         for (int i = 0; i < 4; ++i)
             if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
     incident_[e] = kNoTet;
+    for (VertexId v : absorbed) {
+        incident_[v] = kNoTet;
+        steiner.erase(std::remove(steiner.begin(), steiner.end(), v), steiner.end());
+    }
     if (points_.on_edge(e, nullptr, nullptr, nullptr)) points_.remove_from_chain(e);
     points_.remove(e);
     for (std::size_t v = before; v < m_.vertex_count(); ++v) steiner.push_back(static_cast<VertexId>(v));
+    made_ += m_.vertex_count() - before;
     return true;
 }
 

@@ -31,6 +31,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -52,14 +53,24 @@ public:
     // the fans around e are not as described or no placement works.
     bool split(mesh::VertexId e, std::vector<mesh::VertexId>& steiner);
     const std::string& why() const { return why_; }
+    // Steiner points made so far (some may have been absorbed since by a
+    // later split's grown wedge).
+    std::size_t made() const { return made_; }
 
 private:
     // A point e + eps d strictly inside the wedge bounded by `bounds`
     // (normals inward), in s; false when none is found.
     bool place_in_wedge(const double* pe, const double* d, const std::vector<std::array<mesh::VertexId, 3>>& bounds,
                         double shortest, std::array<double, 3>& s) const;
-    void grow_past_flat_faces(const double* pe, const std::map<mesh::TetId, int>& ball,
-                              std::vector<mesh::FacetRef>& links, std::set<mesh::TetId>& taken) const;
+    bool place_by_growing(int w, const double* pe, const double* d, const std::vector<std::array<mesh::VertexId, 3>>& poly,
+                          double shortest, const std::map<mesh::TetId, int>& ball_wedge,
+                          std::vector<mesh::FacetRef>& links, std::map<mesh::TetId, int>& taken,
+                          std::array<double, 3>& s) const;
+    bool keeps_vertices(const std::vector<mesh::TetId>& old, const std::vector<std::array<mesh::VertexId, 4>>& fresh,
+                        mesh::VertexId e, std::vector<mesh::VertexId>& absorbed) const;
+    using CrossTest = std::function<bool(const double*, const double*, const double*)>;
+    void grow_wedge(int w, const std::map<mesh::TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
+                    std::map<mesh::TetId, int>& taken, const CrossTest& cross, std::size_t limit) const;
     bool fail(std::string why) {
         why_ = std::move(why);
         return false;
@@ -69,6 +80,7 @@ private:
     SurfacePoints& points_;
     std::vector<mesh::TetId>& incident_;
     std::string why_;
+    std::size_t made_ = 0;
 };
 
 }  // namespace cbr::recover

@@ -39,7 +39,7 @@ bool recover_by_splitting(mesh::TetMesh& m, const ConstraintFaces& faces, const 
             }
         }
     }
-    stats.steiner_generated = result.steiner.size();
+    stats.steiner_generated = splitting.made();
     return true;
 }
 

@@ -35,6 +35,9 @@ public:
     void remove(mesh::VertexId p);
 
     bool is_added(mesh::VertexId v) const { return added_.count(v) != 0; }
+    // Vertices from this id on were made by the recovery (added points,
+    // then Steiner points).
+    mesh::VertexId first_new_vertex() const { return static_cast<mesh::VertexId>(corner_first_.size() - 1); }
     // For an added point: true when it lies on an edge (then *a, *b are the
     // edge's ends), false when inside a triangle (then *face is it).
     bool on_edge(mesh::VertexId v, mesh::VertexId* a, mesh::VertexId* b, std::size_t* face) const;
