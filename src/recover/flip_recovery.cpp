@@ -30,6 +30,8 @@ constexpr int kRemovalDepth = 2;
 // (those that need Steiner points) fail fast instead of exploring every
 // nested removal.
 constexpr int kRemovalBudgetPerFace = 100;
+// Tetrahedra searched for crossings of one segment (remove_any_crossing).
+constexpr std::size_t kMaxSearchedTets = 4096;
 // Passes over the faces still missing (recover_by_flips).
 constexpr int kMaxPasses = 3;
 
@@ -48,6 +50,8 @@ public:
         }
         protect_ = [this](VertexId a, VertexId b) { return input_edges_.count(edge_key(a, b)) != 0; };
     }
+
+    void set_wide_search(bool wide) { wide_ = wide; }
 
     bool recover(std::size_t i) {
         budget_ = kRemovalBudgetPerFace;
@@ -99,9 +103,79 @@ private:
     bool recover_edge(VertexId u, VertexId w) {
         for (int step = 0; step < kMaxFlipsPerConstraint; ++step) {
             if (edge_tet(u, w) != kNoTet) return true;
-            if (!remove_crossing(first_crossing(u, w)) && !remove_crossing(first_crossing(w, u))) return false;
+            // The first crossing from either end; when neither can be
+            // flipped away, any crossing along the segment.
+            const bool removed = remove_crossing(first_crossing(u, w)) || remove_crossing(first_crossing(w, u)) ||
+                                 (wide_ && remove_any_crossing(u, w));
+            // A nested removal can change the mesh and still fail (the
+            // inner flip worked, the outer did not): it may have made uw.
+            if (!removed) return edge_tet(u, w) != kNoTet;
         }
         return edge_tet(u, w) != kNoTet;
+    }
+
+    // When neither first crossing can be flipped away, another crossing of
+    // the segment may be: as in Sloan's edge insertion in a plane, where
+    // some crossing edge always has a convex quadrilateral, while the ones
+    // at the ends need not (flat CAD facets, e.g. a disk cap fanned from
+    // one rim vertex over a Delaunay mesh whose in-plane edges are another
+    // triangulation). In 3D nothing guarantees one works; this only widens
+    // the search. The tetrahedra the closed segment meets are searched from
+    // u's ball outwards, and every crossing — a face or an edge crossed in
+    // its interior — is tried in that order.
+    bool remove_any_crossing(VertexId u, VertexId w) {
+        const double* pu = m_.point(u);
+        const double* pw = m_.point(w);
+        std::vector<TetId> near;
+        std::unordered_set<TetId> seen;
+        if (!mesh::ball(m_, u, incident_[u], near)) return false;
+        seen.insert(near.begin(), near.end());
+        std::vector<Crossing> crossings;
+        std::unordered_set<std::uint64_t> tried_edges;
+        for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
+            const TetId t = near[i];
+            if (m_.is_ghost(t)) continue;
+            const VertexId* v = m_.vertices(t);
+            for (int f = 0; f < 4; ++f) {
+                const int* k = kFaceVertices[f];
+                const VertexId a = v[k[0]], b = v[k[1]], c = v[k[2]];
+                const geom::SegTriKind kind =
+                    geom::classify_segment_triangle(pu, pw, m_.point(a), m_.point(b), m_.point(c)).kind;
+                if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
+                if (kind == geom::SegTriKind::CrossInterior) {
+                    Crossing face{};
+                    face.kind = Crossing::kFace;
+                    face.tet = t;
+                    face.face = f;
+                    crossings.push_back(face);
+                }
+                const TetId n = mesh::facet_tet(m_.neighbor(t, f));
+                if (seen.insert(n).second) near.push_back(n);
+            }
+            for (int i0 = 0; i0 < 4; ++i0)
+                for (int i1 = i0 + 1; i1 < 4; ++i1) {
+                    const VertexId x = v[i0], y = v[i1];
+                    if (x == u || x == w || y == u || y == w) continue;
+                    if (!tried_edges.insert(edge_key(x, y)).second) continue;
+                    if (crosses_in_interior(pu, pw, m_.point(x), m_.point(y))) {
+                        Crossing edge{};
+                        edge.kind = Crossing::kEdge;
+                        edge.tet = t;
+                        edge.x = x;
+                        edge.y = y;
+                        crossings.push_back(edge);
+                    }
+                }
+        }
+        for (const Crossing& c : crossings)
+            if (remove_crossing(c)) return true;
+        return false;
+    }
+
+    // Segment xy crosses segment pq at one point interior to both.
+    static bool crosses_in_interior(const double* p, const double* q, const double* x, const double* y) {
+        if (geom::orient3d(p, q, x, y) != 0 || geom::collinear(p, q, x) || geom::collinear(p, q, y)) return false;
+        return geom::classify_coplanar_segments(p, q, x, y) == geom::SegSegKind::Point;
     }
 
     // Face abc, its edges present: present already, or remove a mesh edge
@@ -109,7 +183,7 @@ private:
     bool recover_face(const Triangle& tri) {
         for (int step = 0; step < kMaxFlipsPerConstraint; ++step) {
             if (mark_if_present(tri)) return true;
-            if (!remove_edge_crossing(tri)) return false;
+            if (!remove_edge_crossing(tri)) return mark_if_present(tri);
         }
         return mark_if_present(tri);
     }
@@ -176,6 +250,7 @@ private:
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
     int budget_ = 0;
+    bool wide_ = false;
     std::vector<TetId> incident_;
     std::unordered_set<std::uint64_t> input_edges_;
     mesh::EdgeProtect protect_;
@@ -192,16 +267,22 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     // A face recovered later can unblock one tried earlier: repeat while a
     // pass makes progress, a few times (the faces flips cannot recover
     // would spend their whole removal budget again on every pass; point
-    // splitting recovers them anyway).
-    bool progress = true;
-    for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
-        progress = false;
-        std::vector<std::size_t> still;
-        for (std::size_t i : left) {
-            if (flips.recover(i)) progress = true;
-            else still.push_back(i);
+    // splitting recovers them anyway). Then the same, once more, with the
+    // wider search along each missing edge (remove_any_crossing): only for
+    // the faces the plain passes left, whose meshes it could otherwise
+    // disturb before their own turn.
+    for (const bool wide : {false, true}) {
+        flips.set_wide_search(wide);
+        bool progress = true;
+        for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
+            progress = false;
+            std::vector<std::size_t> still;
+            for (std::size_t i : left) {
+                if (flips.recover(i)) progress = true;
+                else still.push_back(i);
+            }
+            left.swap(still);
         }
-        left.swap(still);
     }
     return left;
 }
