@@ -1061,23 +1061,43 @@ TEST_CASE("protected insertion: the rounded crossing of a planar quad's diagonal
 // Known failures (found while writing these tests; reported). may_fail: they
 // are reported without failing the run; drop the decorator once fixed.
 
-TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)" *
-          doctest::may_fail()) {
-    // Same inputs as the ball transformation test above, but through the
-    // driver: flips run first and leave meshes that conforming recovery or
-    // splitting then refuse (e.g. mask 9 without far points, 8 points:
-    // "no Steiner point position sees the whole wedge"; mask 11, 10 points:
-    // "p coincides with a vertex of the mesh").
+// Through the driver: flips run first and leave meshes that conforming
+// recovery or splitting may then refuse. These four still are: masks 11
+// (both), 27 with far points ("cavity correction would remove a
+// tetrahedron of the crossing the point splits": the rounded crossing
+// point lands behind a constraint face of the edge's shell) and 31 with
+// far points ("the sub-faces of a face do not form a disk").
+namespace {
+
+bool known_pierced_failure(int mask, bool far) {
+    return mask == 11 || (far && (mask == 27 || mask == 31));
+}
+
+void recover_pierced(int mask, bool far) {
+    INFO("mask " << mask << std::string(far ? " with" : " without") << " far points");
+    const cbr::test::Polyhedron p = pierced_triangle(mask, far, true);
+    Case c;
+    build(c, p.xyz, p.tris);
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+    CHECK_MESSAGE(r.ok, r.why);
+}
+
+}  // namespace
+
+TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)") {
+    // Same inputs as the ball transformation test above. Before the
+    // crossing's tetrahedra were kept whole by the cavity correction and
+    // grown wedges kept their vertices, 7 of these 62 failed.
     for (int mask = 1; mask < 32; ++mask)
-        for (const bool far : {false, true}) {
-            INFO("mask " << mask << std::string(far ? " with" : " without") << " far points");
-            const cbr::test::Polyhedron p = pierced_triangle(mask, far, true);
-            Case c;
-            build(c, p.xyz, p.tris);
-            cbr::recover::RecoveryStats stats;
-            const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
-            CHECK_MESSAGE(r.ok, r.why);
-        }
+        for (const bool far : {false, true})
+            if (!known_pierced_failure(mask, far)) recover_pierced(mask, far);
+}
+
+TEST_CASE("recover_faces: the pierced tetrahedra that still fail" * doctest::may_fail()) {
+    for (int mask = 1; mask < 32; ++mask)
+        for (const bool far : {false, true})
+            if (known_pierced_failure(mask, far)) recover_pierced(mask, far);
 }
 
 TEST_CASE("splitting: an added point on an open edge (one triangle)" * doctest::may_fail()) {

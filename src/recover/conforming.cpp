@@ -91,7 +91,7 @@ void ConformingRecovery::note_created(const std::vector<TetId>& created) {
         }
 }
 
-VertexId ConformingRecovery::insert(const double* xyz, std::vector<TetId> cavity) {
+VertexId ConformingRecovery::insert(const double* xyz, std::vector<TetId> cavity, bool keep_cavity) {
     TetId start = kNoTet;
     for (TetId t : cavity)
         if (!m_.is_ghost(t) && contains_closed(m_, t, xyz)) {
@@ -136,7 +136,7 @@ VertexId ConformingRecovery::insert(const double* xyz, std::vector<TetId> cavity
         const VertexId* v = m_.vertices(t);
         return points_.is_subface(v[kFaceVertices[f][0]], v[kFaceVertices[f][1]], v[kFaceVertices[f][2]]);
     };
-    const ProtectedInsertResult r = insert_protected_in_cavity(m_, p, start, cavity, subface);
+    const ProtectedInsertResult r = insert_protected_in_cavity(m_, p, start, cavity, subface, keep_cavity);
     if (!r.ok) {
         m_.truncate_vertices(p);
         why_ = "protected insertion refused an intersection point: " + r.why;
@@ -190,7 +190,7 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
                 return fail("an input edge runs exactly through another vertex");
             default: return fail("edge walk found no tetrahedron towards the other end");
         }
-        const VertexId p = insert(xyz, cavity);
+        const VertexId p = insert(xyz, cavity, false);
         if (p == kGhostVertex) return false;
         points_.add_edge_point(p, a, b);
         if (!edge_exists(q, p)) return fail("an added point is not joined to the chain it extends");
@@ -252,7 +252,9 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
         segment_plane_point(m_.point(u), m_.point(w), A, B, C, xyz);
         mesh::Shell s;
         if (!mesh::shell(m_, u, w, where, s)) return fail("face cut: no shell");
-        const VertexId p = insert(xyz, s.tets);
+        // The shell stays whole: the edge must go (a rounded point can
+        // land behind a face of a thin shell tetrahedron).
+        const VertexId p = insert(xyz, s.tets, true);
         if (p == kGhostVertex) return false;
         points_.add_face_point(p, face);
         if (edge_exists(u, w)) return fail("an intersection point did not cut the edge it was put on");

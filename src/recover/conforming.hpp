@@ -38,9 +38,10 @@ private:
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
     bool recover_interior(std::size_t face);
     bool disk_is_complete(std::size_t face);
-    // Inserts a point at xyz with `cavity` as initial cavity; returns its
-    // id or kGhostVertex (why_ set).
-    mesh::VertexId insert(const double* xyz, std::vector<mesh::TetId> cavity);
+    // Inserts a point at xyz with `cavity` as initial cavity (with
+    // `keep_cavity`, the correction keeps its finite tetrahedra); returns
+    // its id or kGhostVertex (why_ set).
+    mesh::VertexId insert(const double* xyz, std::vector<mesh::TetId> cavity, bool keep_cavity);
     bool edge_exists(mesh::VertexId a, mesh::VertexId b) const;
     void note_created(const std::vector<mesh::TetId>& created);
     bool fail(std::string why) {

@@ -181,6 +181,28 @@ bool PointSplitting::keeps_vertices(const std::vector<TetId>& old, const std::ve
     return true;
 }
 
+// Every vertex of the tetrahedra wedge w took in is still on its boundary
+// (a far face or a polygon triangle), unless it is a Steiner point of an
+// earlier split (absorbed): a growth must not swallow an input vertex or
+// an added point (checked again for the whole split by keeps_vertices).
+bool PointSplitting::keeps_region_vertices(int w, const std::vector<std::array<VertexId, 3>>& poly,
+                                           const std::vector<mesh::FacetRef>& links,
+                                           const std::map<TetId, int>& taken) const {
+    std::set<VertexId> boundary;
+    for (const auto& b : poly) boundary.insert(b.begin(), b.end());
+    for (const mesh::FacetRef r : links)
+        for (int i = 0; i < 3; ++i)
+            boundary.insert(m_.vertex(mesh::facet_tet(r), kFaceVertices[mesh::facet_face(r)][i]));
+    for (const auto& [t, owner] : taken) {
+        if (owner != w) continue;
+        for (int i = 0; i < 4; ++i) {
+            const VertexId v = m_.vertex(t, i);
+            if (boundary.count(v) == 0 && (v < points_.first_new_vertex() || points_.is_added(v))) return false;
+        }
+    }
+    return true;
+}
+
 // When no point of the wedge sees all of it — far faces of nearly
 // coplanar surface points cut it down to a sliver near e — a target s_t
 // on the ray e + eps u, in front of every polygon triangle, is chosen,
@@ -213,7 +235,7 @@ bool PointSplitting::place_by_growing(int w, const double* pe, const double* d,
                 break;
             }
         }
-        if (!all) continue;
+        if (!all || !keeps_region_vertices(w, poly, grown, grown_taken)) continue;
         links = std::move(grown);
         taken = std::move(grown_taken);
         return true;

@@ -37,13 +37,20 @@ using mesh::VertexId;
 
 namespace {
 
-enum class Pass { kStable, kChanged, kStartLost };
+enum class Pass { kStable, kChanged, kStartLost, kSeedLost };
 
 
 class Cavity {
 public:
     Cavity(const TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked)
         : m_(m), p_(m.point(p)), pid_(p), start_(start), blocked_(blocked) {}
+
+    // The seed's finite tetrahedra are never dropped by the correction (it
+    // grows past a face p does not see instead, or gives up).
+    void keep_seed() {
+        for (TetId t : in_)
+            if (!m_.is_ghost(t)) keep_.insert(t);
+    }
 
     bool check_start(std::string& why) const;
     void grow();
@@ -82,6 +89,8 @@ private:
     const BlockedFace& blocked_;
     std::set<TetId> in_;                  // ordered: deterministic star
     std::unordered_set<TetId> rejected_;  // left the cavity: never again
+    std::unordered_set<TetId> keep_;      // must stay (keep_seed)
+    bool kept_lost_ = false;              // a tetrahedron of keep_ was removed
     std::size_t removed_ = 0, added_ = 0;
 };
 
@@ -202,6 +211,7 @@ std::vector<Cavity::Face> Cavity::boundary() const {
 }
 
 void Cavity::remove(TetId t) {
+    if (keep_.count(t)) kept_lost_ = true;
     in_.erase(t);
     rejected_.insert(t);
     ++removed_;
@@ -232,6 +242,15 @@ Pass Cavity::correction_pass() {
         if (s > 0) continue;
         changed = true;
         if (b.t == start_) return Pass::kStartLost;
+        if (keep_.count(b.t)) {
+            // p is behind a face of a tetrahedron that must stay (only
+            // rounding puts it there: the seed is the crossing p splits):
+            // take in the one beyond instead.
+            if (!can_take_in(b.t, b.f, n)) return Pass::kSeedLost;
+            in_.insert(n);
+            ++added_;
+            continue;
+        }
         remove(b.t);
     }
     return changed ? Pass::kChanged : Pass::kStable;
@@ -306,6 +325,10 @@ bool Cavity::correct(std::string& why) {
             return false;
         }
         const bool split = keep_start_component();
+        if (r == Pass::kSeedLost || kept_lost_) {
+            why = "cavity correction would remove a tetrahedron of the crossing the point splits";
+            return false;
+        }
         if (r == Pass::kChanged || split) continue;
         if (!drop_interior_vertices()) return true;
     }
@@ -325,7 +348,7 @@ std::vector<std::array<VertexId, 4>> Cavity::star() const {
 }
 
 ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked,
-                          const std::vector<TetId>* seed) {
+                          const std::vector<TetId>* seed, bool keep_seed) {
     ProtectedInsertResult res;
     if (p >= m.vertex_count()) {
         res.why = "p is not a vertex of the mesh's coordinates";
@@ -335,6 +358,7 @@ ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace
     if (!c.check_start(res.why)) return res;
     if (seed == nullptr) c.grow();
     else if (!c.seed(*seed, res.why)) return res;
+    if (seed != nullptr && keep_seed) c.keep_seed();
     res.initial_cavity = c.size();
     const bool corrected = c.correct(res.why);
     res.removed = c.removed();
@@ -353,12 +377,13 @@ ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace
 }  // namespace
 
 ProtectedInsertResult insert_protected(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked) {
-    return run(m, p, start, blocked, nullptr);
+    return run(m, p, start, blocked, nullptr, false);
 }
 
 ProtectedInsertResult insert_protected_in_cavity(TetMesh& m, VertexId p, TetId start,
-                                                 const std::vector<TetId>& cavity, const BlockedFace& blocked) {
-    return run(m, p, start, blocked, &cavity);
+                                                 const std::vector<TetId>& cavity, const BlockedFace& blocked,
+                                                 bool keep_seed) {
+    return run(m, p, start, blocked, &cavity, keep_seed);
 }
 
 }  // namespace cbr::recover

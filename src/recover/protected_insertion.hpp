@@ -46,9 +46,12 @@ ProtectedInsertResult insert_protected(mesh::TetMesh& m, mesh::VertexId p, mesh:
 
 // Same, with an explicit initial cavity (live tetrahedra; must contain
 // `start` and no protected face between two of its members) instead of
-// the grown one; then the §5.1 correction.
+// the grown one; then the §5.1 correction. `keep_seed`: the correction
+// never drops a finite tetrahedron of `cavity` (where p does not see one of its
+// faces it takes in the tetrahedron beyond, or fails) — for a point put
+// on a crossing, which it must remove whole.
 ProtectedInsertResult insert_protected_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                                  const std::vector<mesh::TetId>& cavity,
-                                                 const BlockedFace& blocked = {});
+                                                 const BlockedFace& blocked = {}, bool keep_seed = false);
 
 }  // namespace cbr::recover
