@@ -23,11 +23,35 @@ double triangle_quality(const double* a, const double* b, const double* c) {
     return s > 0 ? 2.0 * std::sqrt(3.0) * area2 / s : 0.0;
 }
 
+// v, on line pq, lies strictly between p and q (2D: compared along the
+// projected coordinate in which p and q differ most; exact comparisons).
+bool between(geom::Projection pr, const double* p, const double* q, const double* v) {
+    const int a = std::fabs(q[pr.u] - p[pr.u]) >= std::fabs(q[pr.v] - p[pr.v]) ? pr.u : pr.v;
+    return (p[a] < v[a] && v[a] < q[a]) || (q[a] < v[a] && v[a] < p[a]);
+}
+
 // Open segments pq and rs cross at one point interior to both (2D, exact).
 bool segments_cross(geom::Projection pr, const double* p, const double* q, const double* r, const double* s) {
     const int a = geom::orient2d(pr, p, q, r), b = geom::orient2d(pr, p, q, s);
     const int c = geom::orient2d(pr, r, s, p), d = geom::orient2d(pr, r, s, q);
     return a * b < 0 && c * d < 0;
+}
+
+// Chord ij of the loop (not a polygon edge) crosses no polygon edge and
+// holds no polygon vertex in its interior (2D, exact).
+bool chord_is_clear(const std::vector<const double*>& loop, geom::Projection pr, int i, int j) {
+    const int n = static_cast<int>(loop.size());
+    const double* p = loop[i];
+    const double* q = loop[j];
+    for (int x = 0; x < n; ++x) {
+        if (x == i || x == j) continue;
+        const double* v = loop[x];
+        if (geom::orient2d(pr, p, q, v) == 0 && between(pr, p, q, v)) return false;
+        const int y = (x + 1) % n;
+        if (y == i || y == j) continue;
+        if (segments_cross(pr, p, q, v, loop[y])) return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -36,25 +60,37 @@ std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const doub
                                                     int turn) {
     const int n = static_cast<int>(loop.size());
     if (n < 3) return {};
-    const auto point_in_closed = [&](int i, int j, int k, int x) {
-        return turn * geom::orient2d(pr, loop[i], loop[j], loop[x]) >= 0 &&
-               turn * geom::orient2d(pr, loop[j], loop[k], loop[x]) >= 0 &&
-               turn * geom::orient2d(pr, loop[k], loop[i], loop[x]) >= 0;
-    };
+    // A chord ij may be a side of a triangle when it is a polygon edge, or
+    // when it crosses no polygon edge and passes through no vertex
+    // (memoized: each chord is asked about by many triangles).
+    std::vector<signed char> chord(static_cast<std::size_t>(n) * n, -1);
     const auto chord_ok = [&](int i, int j) {
         if ((i + 1) % n == j || (j + 1) % n == i) return true;  // a polygon edge
-        for (int e = 0; e < n; ++e) {
-            const int f = (e + 1) % n;
-            if (e == i || e == j || f == i || f == j) continue;
-            if (segments_cross(pr, loop[i], loop[j], loop[e], loop[f])) return false;
+        signed char& known = chord[static_cast<std::size_t>(i) * n + j];
+        if (known < 0) known = chord_is_clear(loop, pr, i, j) ? 1 : 0;
+        return known == 1;
+    };
+    // Corner c of triangle (c, d, e), turning with `turn`: no polygon edge
+    // at c points strictly into the triangle's angle at c.
+    const auto corner_ok = [&](int c, int d, int e) {
+        for (const int x : {(c + 1) % n, (c + n - 1) % n}) {
+            if (x == d || x == e) continue;
+            if (turn * geom::orient2d(pr, loop[c], loop[d], loop[x]) > 0 &&
+                turn * geom::orient2d(pr, loop[e], loop[c], loop[x]) > 0)
+                return false;
         }
         return true;
     };
+    // A triangle of the right turn whose sides are clear chords holds no
+    // polygon vertex unless the boundary reaches one of its corners from
+    // inside it (from a vertex inside, the boundary must leave the
+    // triangle: across a side, which clear chords exclude, or into a
+    // corner along an edge pointing into the triangle): O(1) beyond the
+    // chords.
     const auto valid = [&](int i, int j, int k) {
         if (turn * geom::orient2d(pr, loop[i], loop[j], loop[k]) <= 0) return false;
-        for (int x = 0; x < n; ++x)
-            if (x != i && x != j && x != k && point_in_closed(i, j, k, x)) return false;
-        return chord_ok(i, j) && chord_ok(j, k) && chord_ok(i, k);
+        return chord_ok(i, j) && chord_ok(j, k) && chord_ok(i, k) && corner_ok(i, j, k) && corner_ok(j, k, i) &&
+               corner_ok(k, i, j);
     };
     // best[i][j]: the best triangulation of the sub-polygon i, i+1, ..., j
     // closed by chord ij; split[i][j]: its apex.

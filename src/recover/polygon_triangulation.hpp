@@ -16,7 +16,9 @@ namespace cbr::recover {
 // triangulations whose triangles are all strictly of sign `turn`, contain
 // no other polygon vertex and whose diagonals cross no polygon edge (all
 // decided exactly), returns one that maximizes the smallest triangle
-// quality (dynamic programming over the polygon). Triangles are index
+// quality (dynamic programming over the polygon; O(n^3), chords
+// memoized, so the 200-gons of a fanned CAD cap take milliseconds, not
+// seconds). Triangles are index
 // triples (i < j < k), which follow the loop's turn. Empty when there is
 // none (e.g. the projection folds the polygon).
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
