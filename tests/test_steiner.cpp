@@ -22,6 +22,7 @@
 #include "mesh/mesh_check.hpp"
 #include "recover/constraint_faces.hpp"
 #include "recover/protected_insertion.hpp"
+#include "recover/steiner_merging.hpp"
 #include "recover/steiner_repositioning.hpp"
 #include "recover/steiner_suppression.hpp"
 #include "mesh_test_util.hpp"
@@ -256,6 +257,39 @@ TEST_CASE("suppression: every interior point inserted into a recovered convex me
             CHECK(used_vertex_count(d.m) == used);
         }
     }
+}
+
+TEST_CASE("merging: adjacent interior points go in pairs, constraints and validity kept") {
+    std::size_t total = 0;
+    for (bool inner : {false, true}) {
+        for (std::uint64_t seed : {1u, 2u, 3u}) {
+            CAPTURE(inner);
+            CAPTURE(seed);
+            Domain d = convex_domain(seed, 40, inner);
+            const std::set<Key3> constraints = marked_faces(d.m);
+            const auto pts = insert_points(d.m, cbr::test::random_points(30, 100 + seed, 0.05, 0.95));
+            const std::size_t used = used_vertex_count(d.m);
+            std::vector<VertexId> kept = pts;
+            const std::size_t merged = merge_steiner_pairs(d.m, kept);
+            total += merged;
+            check_valid(d.m);
+            CHECK(marked_faces(d.m) == constraints);
+            CHECK(kept.size() == pts.size() - merged);
+            CHECK(used_vertex_count(d.m) == used - merged);
+            for (VertexId v : pts) {
+                const bool stays = std::find(kept.begin(), kept.end(), v) != kept.end();
+                CHECK((any_tet_of(d.m, v) != kNoTet) == stays);
+            }
+            // Deterministic: the same input merges the same way.
+            Domain again = convex_domain(seed, 40, inner);
+            const auto pts2 = insert_points(again.m, cbr::test::random_points(30, 100 + seed, 0.05, 0.95));
+            std::vector<VertexId> kept2 = pts2;
+            CHECK(merge_steiner_pairs(again.m, kept2) == merged);
+            CHECK(kept2 == kept);
+        }
+    }
+    MESSAGE(total << " points merged away over 6 domains of 30 interior points");
+    CHECK(total > 0);
 }
 
 TEST_CASE("suppression by flipping the ball down alone (no contraction)") {

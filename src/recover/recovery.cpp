@@ -5,6 +5,7 @@
 #include "recover/conforming.hpp"
 #include "recover/flip_recovery.hpp"
 #include "recover/point_splitting.hpp"
+#include "recover/steiner_merging.hpp"
 #include "recover/steiner_repositioning.hpp"
 #include "recover/steiner_suppression.hpp"
 #include "recover/surface_points.hpp"
@@ -66,8 +67,11 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
         if (!missing.empty()) result.why = "faces still missing after every added point was split";
         // §6: Steiner points removed where their ball can be rebuilt without
         // them (the recovered faces are marked, so no change can lose one),
-        // the others moved to where their tetrahedra are best.
+        // then in pairs (two balls coned from one point; a merged point may
+        // then go alone), the others moved to where their tetrahedra are
+        // best.
         suppress_vertices(m, result.steiner);
+        if (merge_steiner_pairs(m, result.steiner) > 0) suppress_vertices(m, result.steiner);
         RepositionOptions reposition;
         reposition.all_faces_present = missing.empty();
         reposition_steiner_points(m, result.steiner, faces, reposition);
