@@ -22,14 +22,24 @@ using mesh::VertexId;
 // one crossing, but a flip can also create one, so a bound keeps a cycle
 // from running forever.
 constexpr int kMaxFlipsPerConstraint = 64;
-// Nesting of edge removals that first shrink the shell of an edge (n-to-m
-// flips): 2 levels recover the flat, cospherical configurations of CAD
-// boxes (hull faces) at a bounded cost of about (2n)^2 attempts.
-constexpr int kRemovalDepth = 2;
-// Edge removals attempted for one face, nesting included: hard faces
-// (those that need Steiner points) fail fast instead of exploring every
-// nested removal.
-constexpr int kRemovalBudgetPerFace = 100;
+// How hard flip recovery looks, in rounds over the faces still missing
+// (recover_by_flips): the nesting of edge removals that first shrink the
+// shell of an edge (n-to-m flips), the edge removals attempted for one
+// face with nesting included (hard faces fail fast instead of exploring
+// every nested removal), and whether a missing edge's crossings are
+// searched all along it (remove_any_crossing) or only at its ends.
+struct Search {
+    int depth;
+    int budget;
+    bool wide;
+};
+// Plain: 2 levels recover the flat, cospherical configurations of CAD
+// boxes (hull faces) at about (2n)^2 attempts. Then, for what is left, a
+// wide and deep search (5 levels, 2000 removals per face): Steiner points
+// inside the domain on the golf ball 238 -> 44, on a flat cylinder's
+// fanned caps 81 -> 1, paid only by the faces the plain round leaves (a
+// middle round, wide at 2 levels, was slower and no better).
+constexpr Search kSearches[] = {{2, 100, false}, {5, 2000, true}};
 // Tetrahedra searched for crossings of one segment (remove_any_crossing).
 constexpr std::size_t kMaxSearchedTets = 4096;
 // Passes over the faces still missing (recover_by_flips).
@@ -51,10 +61,10 @@ public:
         protect_ = [this](VertexId a, VertexId b) { return input_edges_.count(edge_key(a, b)) != 0; };
     }
 
-    void set_wide_search(bool wide) { wide_ = wide; }
+    void set_search(const Search& s) { search_ = s; }
 
     bool recover(std::size_t i) {
-        budget_ = kRemovalBudgetPerFace;
+        budget_ = search_.budget;
         const Triangle& t = faces_.triangle(i);
         for (int k = 0; k < 3; ++k)
             if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
@@ -92,10 +102,10 @@ private:
                 }
                 const TetId t = c.tet;
                 for (const auto& e : edge)
-                    if (remove_edge_deep(t, e[0], e[1], kRemovalDepth)) return true;
+                    if (remove_edge_deep(t, e[0], e[1], search_.depth)) return true;
                 return false;
             }
-            case Crossing::kEdge: return remove_edge_deep(c.tet, c.x, c.y, kRemovalDepth);
+            case Crossing::kEdge: return remove_edge_deep(c.tet, c.x, c.y, search_.depth);
             default: return false;  // through a vertex: no flip helps
         }
     }
@@ -106,7 +116,7 @@ private:
             // The first crossing from either end; when neither can be
             // flipped away, any crossing along the segment.
             const bool removed = remove_crossing(first_crossing(u, w)) || remove_crossing(first_crossing(w, u)) ||
-                                 (wide_ && remove_any_crossing(u, w));
+                                 (search_.wide && remove_any_crossing(u, w));
             // A nested removal can change the mesh and still fail (the
             // inner flip worked, the outer did not): it may have made uw.
             if (!removed) return edge_tet(u, w) != kNoTet;
@@ -217,7 +227,7 @@ private:
                 const VertexId r = around.ring[i], s = around.ring[(i + 1) % around.size()];
                 if (r == kGhostVertex || s == kGhostVertex) continue;
                 if (!geom::segment_crosses_triangle_interior(m_.point(r), m_.point(s), a, b, c)) continue;
-                if (remove_edge_deep(around.tets[i], r, s, kRemovalDepth)) return true;
+                if (remove_edge_deep(around.tets[i], r, s, search_.depth)) return true;
             }
         }
         return false;
@@ -249,8 +259,8 @@ private:
 
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
+    Search search_ = kSearches[0];
     int budget_ = 0;
-    bool wide_ = false;
     std::vector<TetId> incident_;
     std::unordered_set<std::uint64_t> input_edges_;
     mesh::EdgeProtect protect_;
@@ -264,15 +274,14 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
                                           const std::vector<std::size_t>& missing) {
     FlipRecovery flips(m, faces);
     std::vector<std::size_t> left = missing;
-    // A face recovered later can unblock one tried earlier: repeat while a
-    // pass makes progress, a few times (the faces flips cannot recover
-    // would spend their whole removal budget again on every pass; point
-    // splitting recovers them anyway). Then the same, once more, with the
-    // wider search along each missing edge (remove_any_crossing): only for
-    // the faces the plain passes left, whose meshes it could otherwise
+    // A face recovered later can unblock one tried earlier: each round
+    // repeats while a pass makes progress, a few times (the faces flips
+    // cannot recover would spend their whole budget again on every pass;
+    // point splitting recovers them anyway). Each harder round only sees
+    // the faces the previous ones left, whose meshes it would otherwise
     // disturb before their own turn.
-    for (const bool wide : {false, true}) {
-        flips.set_wide_search(wide);
+    for (const Search& search : kSearches) {
+        flips.set_search(search);
         bool progress = true;
         for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
             progress = false;
