@@ -21,6 +21,7 @@ enum FaceKind : std::uint8_t { kFreshFace = 0, kBoundaryFace = 1, kConstraintFac
 // opposite normals (opposite parity).
 struct FaceEntry {
     std::array<VertexId, 3> key;
+    std::uint64_t head, tail;  // the sorted key packed (key[0]; key[1], key[2]): fast to compare
     FacetRef ref;         // fresh: 4 * (index in fresh) + face; boundary: the outside half-facet
     std::uint8_t kind;    // FaceKind
     std::uint8_t parity;  // 1 when the sorting permutation is odd
@@ -28,7 +29,7 @@ struct FaceEntry {
 };
 
 bool entry_less(const FaceEntry& a, const FaceEntry& b) {
-    return std::tie(a.key, a.kind, a.ref) < std::tie(b.key, b.kind, b.ref);
+    return std::tie(a.head, a.tail, a.kind, a.ref) < std::tie(b.head, b.tail, b.kind, b.ref);
 }
 
 std::uint8_t sort3(std::array<VertexId, 3>& k) {
@@ -43,6 +44,8 @@ FaceEntry make_entry(const VertexId* v, int f, FaceKind kind, FacetRef ref, bool
     FaceEntry e;
     e.key = {v[kFaceVertices[f][0]], v[kFaceVertices[f][1]], v[kFaceVertices[f][2]]};
     e.parity = sort3(e.key);
+    e.head = e.key[0];
+    e.tail = (std::uint64_t{e.key[1]} << 32) | e.key[2];
     e.ref = ref;
     e.kind = kind;
     e.marked = marked ? 1 : 0;
@@ -167,7 +170,7 @@ ReplaceResult match_faces(std::vector<FaceEntry>& faces, Plan& plan) {
     bool removes_constraint = false;
     for (std::size_t i = 0; i < faces.size();) {
         std::size_t j = i + 1;
-        while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+        while (j < faces.size() && faces[j].head == faces[i].head && faces[j].tail == faces[i].tail) ++j;
         const ReplaceResult r = connect_group(&faces[i], &faces[0] + j, plan);
         if (r == ReplaceResult::kNotTiling) return r;
         removes_constraint |= r == ReplaceResult::kRemovesConstraint;
