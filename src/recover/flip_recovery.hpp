@@ -1,8 +1,11 @@
 // §5.1 first step of the combined recovery: recover missing faces by flips
 // alone. For each missing face, its missing edges first (remove, by a 2-3
 // flip or an edge removal, the first face or edge that the segment
-// crosses, walking from either end), then the face (remove the mesh edges
-// that cross its interior). Input edges are never flipped away and
+// crosses, walking from either end; in the later rounds any crossing along
+// the segment), then the face (remove the mesh edges that cross its
+// interior). Edge removals may first remove edges of the shell (nested, to
+// a depth and within a budget per face that grow from round to round; the
+// rounds are in flip_recovery.cpp). Input edges are never flipped away and
 // replace_tets never removes a recovered face, so a recovered constraint
 // stays recovered ("protection").
 #pragma once

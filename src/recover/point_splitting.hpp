@@ -27,7 +27,11 @@
 // that keeps every tetrahedron of the cone positively oriented (estimated,
 // then tested exactly on the rounded s_W; smaller ones after). A wedge made of ghost
 // tetrahedra (e on the hull) gets no point: the polygon triangles become
-// hull faces.
+// hull faces. When no point near e sees the whole wedge (or only one
+// extremely close to the surface does), the wedge grows instead: it takes
+// in the tetrahedra beyond every far face a target point does not see, so
+// the target cones the grown region (§5.1's cavity correction, driven by
+// the point); earlier Steiner points inside it are absorbed.
 #pragma once
 
 #include <array>
