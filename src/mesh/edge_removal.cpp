@@ -64,10 +64,15 @@ private:
 // best(i, j): the best worst-quality over triangulations of the sub-polygon
 // r_i .. r_j closed by the chord (i, j); split(i, j): its apex k.
 struct RingDp {
-    std::size_t n;
+    std::size_t n = 0;
     std::vector<double> best;
     std::vector<int> split;
-    explicit RingDp(std::size_t size) : n(size), best(size * size, kInf), split(size * size, -1) {}
+    // Reuses the tables' storage (the caller keeps one RingDp per thread).
+    void reset(std::size_t size) {
+        n = size;
+        best.assign(size * size, kInf);
+        split.assign(size * size, -1);
+    }
     double& at(int i, int j) { return best[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
     int& apex(int i, int j) { return split[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
 };
@@ -135,7 +140,8 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
 std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                                                   double* min_quality) {
     if (shell.size() < 3) return {};
-    RingDp dp(shell.size());
+    thread_local RingDp dp;
+    dp.reset(shell.size());
     solve(dp, RingScorer(m, u, v, shell));
     const double best = dp.at(0, static_cast<int>(shell.size()) - 1);
     if (min_quality) *min_quality = best;

@@ -245,7 +245,8 @@ private:
         created_.clear();
         if (done(mesh::remove_edge(m_, t, u, v, protect_, &created_))) return true;
         if (depth == 0) return false;
-        mesh::Shell around;
+        if (shells_.size() <= static_cast<std::size_t>(depth)) shells_.resize(static_cast<std::size_t>(depth) + 1);
+        mesh::Shell& around = shells_[static_cast<std::size_t>(depth)];  // one per nesting level, reused
         if (!mesh::shell(m_, u, v, t, around)) return false;
         for (std::size_t i = 0; i < around.size(); ++i) {
             const VertexId r = around.ring[i];
@@ -269,6 +270,7 @@ private:
     mesh::EdgeProtect protect_;
     std::vector<TetId> ball_, created_;
     mesh::Shell shell_;
+    std::vector<mesh::Shell> shells_;
 };
 
 }  // namespace
