@@ -139,12 +139,16 @@ private:
     bool remove_any_crossing(VertexId u, VertexId w) {
         const double* pu = m_.point(u);
         const double* pw = m_.point(w);
-        std::vector<TetId> near;
-        std::unordered_set<TetId> seen;
+        // Members, cleared: this runs for every step of every wide edge.
+        std::vector<TetId>& near = near_;
+        std::unordered_set<TetId>& seen = seen_;
+        std::vector<Crossing>& crossings = crossings_;
+        std::unordered_set<std::uint64_t>& tried_edges = tried_edges_;
+        seen.clear();
+        crossings.clear();
+        tried_edges.clear();
         if (!mesh::ball(m_, u, incident_[u], near)) return false;
         seen.insert(near.begin(), near.end());
-        std::vector<Crossing> crossings;
-        std::unordered_set<std::uint64_t> tried_edges;
         for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
             const TetId t = near[i];
             if (m_.is_ghost(t)) continue;
@@ -180,7 +184,7 @@ private:
                     }
                 }
         }
-        for (const Crossing& c : crossings)
+        for (const Crossing& c : crossings)  // remove_crossing never searches: the members stay put
             if (remove_crossing(c)) return true;
         return false;
     }
@@ -271,6 +275,10 @@ private:
     std::vector<TetId> ball_, created_;
     mesh::Shell shell_;
     std::vector<mesh::Shell> shells_;
+    std::vector<TetId> near_;
+    std::unordered_set<TetId> seen_;
+    std::vector<Crossing> crossings_;
+    std::unordered_set<std::uint64_t> tried_edges_;
 };
 
 }  // namespace
