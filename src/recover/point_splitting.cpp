@@ -113,6 +113,19 @@ bool PointSplitting::place_in_wedge(const double* pe, const double* d,
     return false;
 }
 
+// The vertices of far face r (normal into the wedge that lists it).
+std::array<VertexId, 3> PointSplitting::face_vertices(mesh::FacetRef r) const {
+    const TetId t = mesh::facet_tet(r);
+    const int* k = kFaceVertices[mesh::facet_face(r)];
+    return {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
+}
+
+// A vertex a split may take out of the mesh: a Steiner point of an earlier
+// split (never an input vertex or an added point).
+bool PointSplitting::absorbable(VertexId v) const {
+    return v >= points_.first_new_vertex() && !points_.is_added(v);
+}
+
 // Grows wedge w past the far faces `cross` selects: the tetrahedron beyond
 // such a face joins the wedge (its other faces become far faces, or
 // interior ones where they meet the wedge) — unless the face is a
@@ -138,8 +151,7 @@ void PointSplitting::grow_wedge(int w, const std::map<TetId, int>& ball_wedge, s
         if (inside.count(links[i])) continue;
         const TetId t = mesh::facet_tet(links[i]);
         const int f = mesh::facet_face(links[i]);
-        const int* k = kFaceVertices[f];
-        const VertexId a = m_.vertex(t, k[0]), b = m_.vertex(t, k[1]), c = m_.vertex(t, k[2]);
+        const auto [a, b, c] = face_vertices(links[i]);
         if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
         if (!cross(m_.point(a), m_.point(b), m_.point(c))) continue;
         const mesh::FacetRef across = m_.neighbor(t, f);
@@ -174,7 +186,7 @@ bool PointSplitting::keeps_vertices(const std::vector<TetId>& old, const std::ve
         for (int i = 0; i < 4; ++i) {
             const VertexId v = m_.vertex(t, i);
             if (v == e || v == kGhostVertex || kept.count(v)) continue;
-            if (v < points_.first_new_vertex() || points_.is_added(v)) return false;
+            if (!absorbable(v)) return false;
             lost.insert(v);
         }
     absorbed.assign(lost.begin(), lost.end());
@@ -191,13 +203,12 @@ bool PointSplitting::keeps_region_vertices(int w, const std::vector<std::array<V
     std::set<VertexId> boundary;
     for (const auto& b : poly) boundary.insert(b.begin(), b.end());
     for (const mesh::FacetRef r : links)
-        for (int i = 0; i < 3; ++i)
-            boundary.insert(m_.vertex(mesh::facet_tet(r), kFaceVertices[mesh::facet_face(r)][i]));
+        for (const VertexId v : face_vertices(r)) boundary.insert(v);
     for (const auto& [t, owner] : taken) {
         if (owner != w) continue;
         for (int i = 0; i < 4; ++i) {
             const VertexId v = m_.vertex(t, i);
-            if (boundary.count(v) == 0 && (v < points_.first_new_vertex() || points_.is_added(v))) return false;
+            if (boundary.count(v) == 0 && !absorbable(v)) return false;
         }
     }
     return true;
@@ -225,17 +236,9 @@ bool PointSplitting::place_by_growing(int w, const double* pe, const double* d,
         grow_wedge(w, ball_wedge, grown, grown_taken, [st](const double* a, const double* b, const double* c) {
             return geom::orient3d(a, b, c, st) <= 0;
         }, kMaxTakenTowardsTarget);
-        bool all = true;
-        for (const mesh::FacetRef r : grown) {
-            const TetId t = mesh::facet_tet(r);
-            const int* k = kFaceVertices[mesh::facet_face(r)];
-            if (geom::orient3d(m_.point(m_.vertex(t, k[0])), m_.point(m_.vertex(t, k[1])),
-                               m_.point(m_.vertex(t, k[2])), st) <= 0) {
-                all = false;
-                break;
-            }
-        }
-        if (!all || !keeps_region_vertices(w, poly, grown, grown_taken)) continue;
+        std::vector<std::array<VertexId, 3>> far;
+        for (const mesh::FacetRef r : grown) far.push_back(face_vertices(r));
+        if (!sees_all(m_, far, st) || !keeps_region_vertices(w, poly, grown, grown_taken)) continue;
         links = std::move(grown);
         taken = std::move(grown_taken);
         return true;
@@ -402,10 +405,8 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
             bounds.clear();
             beyond.clear();
             for (const mesh::FacetRef r : links) {
-                const TetId t = mesh::facet_tet(r);
-                const int* k = kFaceVertices[mesh::facet_face(r)];
-                bounds.push_back({m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])});
-                const TetId across = mesh::facet_tet(m_.neighbor(t, mesh::facet_face(r)));
+                bounds.push_back(face_vertices(r));
+                const TetId across = mesh::facet_tet(m_.neighbor(mesh::facet_tet(r), mesh::facet_face(r)));
                 if (m_.is_ghost(across)) beyond.push_back(across);
             }
             bounds.insert(bounds.end(), poly.begin(), poly.end());

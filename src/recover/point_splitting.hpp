@@ -70,6 +70,8 @@ private:
                           double shortest, const std::map<mesh::TetId, int>& ball_wedge,
                           std::vector<mesh::FacetRef>& links, std::map<mesh::TetId, int>& taken,
                           std::array<double, 3>& s) const;
+    std::array<mesh::VertexId, 3> face_vertices(mesh::FacetRef r) const;
+    bool absorbable(mesh::VertexId v) const;
     bool keeps_region_vertices(int w, const std::vector<std::array<mesh::VertexId, 3>>& poly,
                                const std::vector<mesh::FacetRef>& links, const std::map<mesh::TetId, int>& taken) const;
     bool keeps_vertices(const std::vector<mesh::TetId>& old, const std::vector<std::array<mesh::VertexId, 4>>& fresh,

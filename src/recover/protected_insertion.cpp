@@ -37,7 +37,7 @@ using mesh::VertexId;
 
 namespace {
 
-enum class Pass { kStable, kChanged, kStartLost, kSeedLost };
+enum class Pass { kStable, kChanged, kStartLost };
 
 
 class Cavity {
@@ -242,11 +242,11 @@ Pass Cavity::correction_pass() {
         if (s > 0) continue;
         changed = true;
         if (b.t == start_) return Pass::kStartLost;
-        if (keep_.count(b.t)) {
+        if (keep_.count(b.t) && can_take_in(b.t, b.f, n)) {
             // p is behind a face of a tetrahedron that must stay (only
             // rounding puts it there: the seed is the crossing p splits):
-            // take in the one beyond instead.
-            if (!can_take_in(b.t, b.f, n)) return Pass::kSeedLost;
+            // take in the one beyond instead. (If it cannot join, remove()
+            // records the loss and correct() gives up.)
             in_.insert(n);
             ++added_;
             continue;
@@ -325,7 +325,7 @@ bool Cavity::correct(std::string& why) {
             return false;
         }
         const bool split = keep_start_component();
-        if (r == Pass::kSeedLost || kept_lost_) {
+        if (kept_lost_) {
             why = "cavity correction would remove a tetrahedron of the crossing the point splits";
             return false;
         }
