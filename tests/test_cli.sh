@@ -214,7 +214,8 @@ run_local_outputs() {
 
     # cbr mesh: recovery then full mesh generation; the tables and --json
     # of cbr recover, plus the refinement counts; exit 3 when recovery fails.
-    expect 0 "" mesh --help && report_has "cbr mesh IN -o OUT \[--size H\]" && report_has "--size H"
+    expect 0 "" mesh --help && report_has "cbr mesh IN -o OUT \[--size H\]" && report_has "--size H" &&
+        report_has "--growth R"
     expect 0 "" mesh "$tmp/cube.off" -o "$tmp/cube-mesh.mesh" --size 0.25 --json "$tmp/cube-mesh.json" &&
         report_has "Table I" && report_has "field points inserted" && report_has "Table II"
     checks=$((checks + 1))
@@ -233,6 +234,10 @@ run_local_outputs() {
     json_has "$tmp/pierced-mesh.json" 'd["command"] == "mesh" and d["status"] == "recovery_failed" and d["refine"] is None'
     expect 1 "--size needs a finite length > 0, not '-1'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size -1
     expect 1 "--size needs a length" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size
+    expect 1 "--growth needs a rate within \[0, 100\], not '-0.5'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --growth -0.5
+    expect 1 "--growth needs a rate" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --growth
+    expect 0 "" mesh "$tmp/cube.off" -o "$tmp/cube-grown.mesh" --size 0.25 --growth 0.5 &&
+        report_has "field points inserted"
     expect 1 "no output file" mesh "$tmp/cube.off"
     expect 0 "" --help && report_has "mesh IN -o OUT" && report_has "demo \[-o OUT\]"
 

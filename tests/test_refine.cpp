@@ -103,6 +103,9 @@ struct Outcome {
     cbr::refine::QualityTable quality;
     std::size_t points_before = 0, points_after = 0;
     std::size_t steiner = 0;  // recovery's Steiner points
+    // Largest sizing-field value at an input point, and at a point added by
+    // refinement.
+    double h_input_max = 0, h_added_max = 0;
 };
 
 // Delaunay, recovery, regions, refinement through the core; then every
@@ -131,6 +134,10 @@ Outcome refine_and_check(const Surface& s, const cbr::refine::RefineOptions& opt
     out.stats = cbr::refine::refine_mesh(m, faces, before.of_tet, rr.steiner, options, &h);
     out.points_after = m.vertex_count();
     REQUIRE(h.size() == m.vertex_count());
+    for (std::size_t v = 0; v < h.size(); ++v) {
+        double& largest = v < n ? out.h_input_max : out.h_added_max;
+        if (v < n || v >= out.points_before) largest = std::max(largest, h[v]);
+    }
 
     // Valid, exactly.
     const cbr::mesh::CheckReport check = cbr::mesh::check_mesh(m);
@@ -279,6 +286,24 @@ TEST_CASE("refine: a constant size, and the smaller of it and the surface field"
     CHECK(coarse.stats.field_points < surface.stats.field_points);
 }
 
+TEST_CASE("refine: growth coarsens the inside") {
+    // The nine-sphere box's surface field (about 0.1 to 0.17) carried
+    // inside, against the same field growing by 0.5 per unit length away
+    // from the surface: every size bound still met (refine_and_check), the
+    // field larger inside than anywhere on the surface, far fewer points.
+    const Outcome surface = refine_and_check(nine_spheres(), cbr::refine::RefineOptions{}, 0.75);
+    cbr::refine::RefineOptions growing;
+    growing.growth = 0.5;
+    const Outcome grown = refine_and_check(nine_spheres(), growing, 0.65);
+    CHECK(surface.h_added_max <= surface.h_input_max);
+    CHECK(grown.h_added_max > 1.5 * grown.h_input_max);
+    CHECK(grown.stats.field_points < surface.stats.field_points / 2);
+    // Growth 0 is the surface field, point for point.
+    cbr::refine::RefineOptions zero;
+    zero.growth = 0;
+    CHECK(refine_and_check(nine_spheres(), zero, 0.75).stats.field_points == surface.stats.field_points);
+}
+
 TEST_CASE("refine: a coarse surface bounds the size next to it") {
     // Faces of edge 1 and H = 0.2: no edge into the interior from a corner
     // can be shorter than about the faces' circumradius, so only the
@@ -389,6 +414,14 @@ TEST_CASE("cbr_mesh_refine: through the C API") {
     CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_QUALITY_BOUND, 0.5) == CBR_ERR_INVALID_ARGUMENT);
     CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_PASSES, 1.5) == CBR_ERR_INVALID_ARGUMENT);
     CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_SIZE_FROM_SURFACE, 2) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_GROWTH, -0.1) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_GROWTH, 101) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_set_param(m, CBR_PARAM_REFINE_GROWTH, std::nan("")) == CBR_ERR_INVALID_ARGUMENT);
+    {
+        double g = -1;
+        CHECK(cbr_mesh_get_param(m, CBR_PARAM_REFINE_GROWTH, &g) == CBR_OK);
+        CHECK(g == 0);
+    }
     double v = -1;
     CHECK(cbr_mesh_get_param(m, CBR_PARAM_REFINE_QUALITY_BOUND, &v) == CBR_OK);
     CHECK(v == doctest::Approx(1.414));

@@ -124,6 +124,13 @@ extern "C" {
    CBR_PARAM_REFINE_SIZE); 0: H alone (CBR_PARAM_REFINE_SIZE must then be
    > 0 when cbr_mesh_refine runs). 0 or 1. */
 #define CBR_PARAM_REFINE_SIZE_FROM_SURFACE 7
+/* Size growth r away from the surface: a point inserted inside takes the
+   larger of the field interpolated there and min over the corners c of its
+   tetrahedron of h(c) + r |pc|, so the tetrahedra coarsen by r per unit
+   length towards the inside (fewer tetrahedra; the shape bound still
+   applies). 0: the surface field interpolated, the inside meshed at the
+   surface's resolution. Default 0; range [0, 100]. */
+#define CBR_PARAM_REFINE_GROWTH 8
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */

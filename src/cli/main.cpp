@@ -30,7 +30,7 @@ void print_usage(std::FILE* out) {
         "              recovery of its triangles without adding points on them;\n"
         "              writes OUT (.mesh, .vtu, .msh, .node/.ele/.face) and prints\n"
         "              the paper's Table I and Table II (cbr recover --help)\n"
-        "  mesh IN -o OUT [--size H] [--json FILE]\n"
+        "  mesh IN -o OUT [--size H] [--growth R] [--json FILE]\n"
         "              full mesh generation: recover as above, then fill the inside\n"
         "              with points (target edge length H, default from the surface)\n"
         "              and improve the elements; same outputs and tables\n"

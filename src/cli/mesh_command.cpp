@@ -10,7 +10,7 @@ namespace {
 
 void print_help(std::FILE* out) {
     std::fprintf(out,
-                 "usage: cbr mesh IN -o OUT [--size H] [--json FILE] [--keep-exterior] [--allow-open] [-q]\n"
+                 "usage: cbr mesh IN -o OUT [--size H] [--growth R] [--json FILE] [--keep-exterior] [--allow-open] [-q]\n"
                  "\n"
                  "Tetrahedralizes the inside of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh): boundary recovery as in cbr recover (every triangle a face,\n"
@@ -25,6 +25,10 @@ void print_help(std::FILE* out) {
                  "  --size H         target edge length inside (H > 0): the smaller of H and\n"
                  "                   the size of the surface triangles carried inside;\n"
                  "                   default: from the surface alone\n"
+                 "  --growth R       let the size grow by R per unit length away from the\n"
+                 "                   surface (0 <= R <= 100; e.g. 0.2): fewer, larger\n"
+                 "                   tetrahedra inside; default 0: the surface's size\n"
+                 "                   carried inside\n"
                  "  --json FILE      also write the run and the tables as JSON (written for\n"
                  "                   failed runs too, with their status and error)\n"
                  "  --keep-exterior  also write the exterior tetrahedra (region 0; never\n"

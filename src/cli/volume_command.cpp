@@ -25,17 +25,20 @@ constexpr int kContinue = -1;
 
 struct VolumeArgs : OutputOptions {
     std::string input;
-    double size = 0;  // mesh --size H; 0: from the surface
+    double size = 0;    // mesh --size H; 0: from the surface
+    double growth = 0;  // mesh --growth R; 0: the surface field interpolated
     bool keep_exterior = false;
     bool allow_open = false;
 };
 
-bool parse_size(const char* text, double& size) {
+// A finite number > 0 (or >= 0 with allow_zero).
+bool parse_length(const char* text, double& out, bool allow_zero = false) {
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(text, &end);
-    if (errno != 0 || end == text || *end != '\0' || !std::isfinite(v) || !(v > 0)) return false;
-    size = v;
+    if (errno != 0 || end == text || *end != '\0' || !std::isfinite(v)) return false;
+    if (!(v > 0) && !(allow_zero && v == 0)) return false;
+    out = v;
     return true;
 }
 
@@ -52,8 +55,12 @@ int parse_args(int argc, char** argv, const VolumeCommand& command, VolumeArgs& 
             if (error != kContinue) return error;
         } else if (command.refine && a == "--size") {
             if (i + 1 >= argc) return usage_error(name, "--size needs a length");
-            if (!parse_size(argv[++i], args.size))
+            if (!parse_length(argv[++i], args.size))
                 return usage_error(name, std::string("--size needs a finite length > 0, not '") + argv[i] + "'");
+        } else if (command.refine && a == "--growth") {
+            if (i + 1 >= argc) return usage_error(name, "--growth needs a rate");
+            if (!parse_length(argv[++i], args.growth, true) || args.growth > 100)
+                return usage_error(name, std::string("--growth needs a rate within [0, 100], not '") + argv[i] + "'");
         } else if (a == "--keep-exterior") {
             args.keep_exterior = true;
         } else if (a == "--allow-open") {
@@ -93,6 +100,7 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
         options.allow_open = args.allow_open;
         options.refine = command.refine;
         options.size = args.size;
+        options.growth = args.growth;
         outcome = run_recovery(surface, options, steps);
     } else {
         outcome.exit_code = exit_code_for(read.kind);

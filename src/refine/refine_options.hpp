@@ -18,6 +18,13 @@ struct RefineOptions {
     // h(v) <= h(u) + g |uv| (a smooth field, §6: "the sizing field ...
     // should avoid large variation").
     double grading = 0.5;
+    // Growth r: a point inserted at p takes, besides the value interpolated
+    // there, up to min over the corners c of its tetrahedron of
+    // h(c) + r |pc| (the larger of the two), so the field grows by r per
+    // unit length away from the surface and the inside coarsens, as far
+    // from the surface as the shape bound allows. 0: the surface field
+    // interpolated, a solid meshed at its surface's resolution throughout.
+    double growth = 0;
     // Radius-edge ratio bound B (circumradius / shortest edge) above which
     // a tetrahedron gets its circumcentre inserted (TetGen's -q bound).
     double quality_bound = 1.414;

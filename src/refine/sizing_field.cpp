@@ -103,6 +103,7 @@ SizingField::SizingField(const mesh::TetMesh& m, const recover::ConstraintFaces&
     h_ = surface_sizes(m, faces);
     cap_ = options.target_size > 0 ? options.target_size : kInf;
     constant_ = !options.size_from_surface && options.target_size > 0;
+    growth_ = options.growth;
     std::vector<char> on_surface(h_.size(), 0);
     double sum = 0;
     std::size_t known = 0;
@@ -123,7 +124,17 @@ SizingField::SizingField(const mesh::TetMesh& m, const recover::ConstraintFaces&
 }
 
 double SizingField::for_new_point(const mesh::TetMesh& m, TetId t, const double* p) const {
-    return interior(interpolate(m, t, p));
+    const double interpolated = interpolate(m, t, p);
+    if (!(growth_ > 0)) return interior(interpolated);
+    // Growth away from the surface: the largest value the corners allow
+    // under a field that grows by growth_ per unit length (the corners'
+    // values are themselves graded, so the field stays growth-Lipschitz
+    // along the insertion sequence).
+    const VertexId* v = m.vertices(t);
+    double grown = kInf;
+    for (int i = 0; i < 4; ++i)
+        grown = std::min(grown, h_[v[i]] + growth_ * std::sqrt(squared_distance(m.point(v[i]), p)));
+    return interior(std::max(interpolated, grown));
 }
 
 double SizingField::interpolate(const mesh::TetMesh& m, TetId t, const double* p) const {

@@ -28,7 +28,8 @@ public:
     // at p (clamped to the corner range when p is slightly outside t).
     double interpolate(const mesh::TetMesh& m, mesh::TetId t, const double* p) const;
     // The value a point inserted at p inside t gets: the interpolated value
-    // capped by H, or H alone.
+    // (raised by the growth rule when RefineOptions::growth > 0) capped by
+    // H, or H alone.
     double for_new_point(const mesh::TetMesh& m, mesh::TetId t, const double* p) const;
     // The interior rule applied to a value: capped by H, or H alone.
     double interior(double value) const { return constant_ ? cap_ : (value < cap_ ? value : cap_); }
@@ -40,6 +41,7 @@ private:
     std::vector<double> h_;
     double cap_ = 0;         // H, or +inf
     bool constant_ = false;  // H alone off the surface
+    double growth_ = 0;      // RefineOptions::growth
 };
 
 }  // namespace cbr::refine

@@ -17,6 +17,8 @@
 #                 that cbr cannot recover yet are reported as FAILED)
 #   --size H      pass --size H to cbr mesh (TetGen gets -a with the volume
 #                 of a regular tetrahedron of edge H)
+#   --growth R    pass --growth R to cbr mesh (the size grows by R per unit
+#                 length away from the surface; TetGen gets nothing more)
 #   --csv FILE    also write the table (per mesh, then the totals) as CSV
 #   --timeout S   seconds allowed to each run (default $CBR_BENCH_TIMEOUT or 300)
 #   --keep        keep the outputs (the work directory is printed)
@@ -42,6 +44,7 @@ data=
 csv=
 keep=0
 size=
+growth=
 surfaces=()
 
 usage() {
@@ -55,6 +58,8 @@ while [ $# -gt 0 ]; do
         --csv=*) csv=${1#--csv=}; shift ;;
         --size) [ $# -ge 2 ] || usage; size=$2; shift 2 ;;
         --size=*) size=${1#--size=}; shift ;;
+        --growth) [ $# -ge 2 ] || usage; growth=$2; shift 2 ;;
+        --growth=*) growth=${1#--growth=}; shift ;;
         --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
         --timeout=*) limit=${1#--timeout=}; shift ;;
         --keep) keep=1; shift ;;
@@ -103,7 +108,8 @@ raw=$work/raw.csv
 echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele" >"$raw"
 n=${#files[@]}
 i=0
-echo "== run: ${n} surfaces, ${limit} s limit per run${size:+, --size $size}"
+if [ -n "$growth" ]; then size_args+=(--growth "$growth"); fi
+echo "== run: ${n} surfaces, ${limit} s limit per run${size:+, --size $size}${growth:+, --growth $growth}"
 for f in "${files[@]}"; do
     i=$((i + 1))
     name=$(basename "$f" .off)
