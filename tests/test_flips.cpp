@@ -580,6 +580,19 @@ TEST_CASE("edge removal on hand-built shells of 3 to 8 tetrahedra") {
             REQUIRE(check_mesh(m).ok());
         }
     }
+    SUBCASE("shells over kMaxRemovalShell are not tried") {
+        // A convex planar ring of kMaxRemovalShell vertices is removed; one
+        // more and remove_edge leaves it alone (the O(n^3) search of a
+        // CAD fan's shell was 93% of a recovery and never succeeded).
+        const int n = static_cast<int>(cbr::mesh::kMaxRemovalShell);
+        TetMesh at_cap = shell_mesh(n, [](int) { return 1.0; }, [](int) { return 0.0; });
+        CHECK(remove_edge(at_cap, 0, 0, 1) == FlipResult::kDone);
+        REQUIRE(check_mesh(at_cap).ok());
+        TetMesh over = shell_mesh(n + 1, [](int) { return 1.0; }, [](int) { return 0.0; });
+        const Snapshot before(over);
+        CHECK(remove_edge(over, 0, 0, 1) == FlipResult::kNotApplicable);
+        CHECK((Snapshot(over) == before));
+    }
     SUBCASE("ring lifted above v: no triangulation valid") {
         for (int n = 3; n <= 8; ++n) {
             CAPTURE(n);

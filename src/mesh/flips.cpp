@@ -122,7 +122,7 @@ FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgePr
     // Reused storage: flip recovery calls this millions of times, and the
     // shell's vectors were a tenth of its instructions in allocation.
     thread_local Shell s;
-    if (!shell_from(m, t, u, v, s) || s.size() < 3) return FlipResult::kNotApplicable;
+    if (!shell_from(m, t, u, v, s) || s.size() < 3 || s.size() > kMaxRemovalShell) return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
     const std::vector<RingTriangle> triangles = best_ring_triangulation(m, u, v, s);
     if (triangles.empty()) return FlipResult::kNoValidTriangulation;

@@ -58,6 +58,14 @@ FlipResult flip32(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect
 FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
                   std::vector<TetId>* created = nullptr);
 
+// Edge removal is not tried on shells larger than this: the search is
+// O(n^3), and large shells (the fans of CAD caps) are never removable in
+// practice. Measured in flip recovery on the shared surfaces: of 6,433
+// shells of 17-32 tetrahedra 13 could be removed, of 154 shells of
+// 129-256 (thingicsg-sprocket) none, and those took 93% of its recovery's
+// instructions.
+inline constexpr std::size_t kMaxRemovalShell = 64;
+
 // Edge removal: the shell of uv (n >= 3 tetrahedra, ring r0..r(n-1)) is
 // replaced by 2(n-2) tetrahedra: a triangulation of the ring polygon
 // coned to u and to v, the one that maximizes the minimum tet_quality
@@ -65,7 +73,8 @@ FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect
 // as an endpoint is allowed; ghost tetrahedra then count as quality +inf
 // when they satisfy the convexity rule against the shell's vertices, -inf
 // otherwise. kNoValidTriangulation when no triangulation has every
-// tetrahedron valid.
+// tetrahedron valid; kNotApplicable for a shell of more than
+// kMaxRemovalShell tetrahedra.
 FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
                        std::vector<TetId>* created = nullptr);
 
@@ -82,7 +91,10 @@ FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shel
                            const std::vector<RingTriangle>& triangles, std::vector<TetId>* created = nullptr);
 
 // The triangulation of the ring that remove_edge would use (empty when
-// none is valid), and its minimum quality.
+// none is valid), and its minimum quality. Every finite tetrahedron it
+// cones, (ri, rj, rk, v) and (ri, rk, rj, u) for a triangle (i, j, k), is
+// positively oriented (exact orient3d), and every ghost keeps the shell's
+// finite vertices on the inner side of its hull face.
 std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                                                   double* min_quality = nullptr);
 
