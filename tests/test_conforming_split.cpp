@@ -501,6 +501,20 @@ TEST_CASE("triangulate_polygon: convex polygon, counter-clockwise and clockwise"
     CHECK(one[0] == std::array<int, 3>{0, 1, 2});
 }
 
+TEST_CASE("triangulate_polygon: triangles named flat are left out") {
+    // A chain of points on one line (collinear but for a rounding-sized
+    // dip at vertex 1, which makes 0-1-2 a valid ear) and one point off it:
+    // only the fan from the point off the line avoids the chain's own
+    // triangles.
+    const std::vector<P2> loop = {P2{0, 0, 0}, P2{1, -1e-12, 0}, P2{2, 0, 0}, P2{3, 0, 0}, P2{1.5, 0.001, 0}};
+    const auto on_chain = [](int i, int j, int k) { return i < 4 && j < 4 && k < 4; };
+    const auto tris = triangulate_polygon(ptrs(loop), Projection{0, 1}, +1, on_chain);
+    check_triangulation(loop, +1, tris);
+    for (const auto& t : tris) CHECK_FALSE(on_chain(t[0], t[1], t[2]));
+    // Every triangle flat: none.
+    CHECK(triangulate_polygon(ptrs(loop), Projection{0, 1}, +1, [](int, int, int) { return true; }).empty());
+}
+
 TEST_CASE("triangulate_polygon: non-convex star-shaped polygons, every rotation of the loop") {
     // A star: alternate long and short spokes, strongly reflex.
     std::vector<P2> star;

@@ -336,7 +336,15 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         }
         std::vector<const double*> coords;
         for (VertexId v : fan.loop) coords.push_back(m_.point(v));
-        fan.triangles = triangulate_polygon(coords, pr, turn);
+        // Three points of one input edge (its ends or points added on it:
+        // a stretch of a chain seen across a thin face) are collinear in
+        // exact geometry; the sign of their triangle is rounding and its
+        // normal arbitrary, and a cone over it can leave no room in the
+        // wedge (the feeder body's thin cylinder facets).
+        const std::vector<VertexId>& loop = fan.loop;
+        fan.triangles = triangulate_polygon(coords, pr, turn, [&](int i, int j, int k) {
+            return points_.on_one_edge(loop[i], loop[j], loop[k]);
+        });
         if (fan.triangles.empty()) return fail("the polygon around an added point has no triangulation");
     }
 

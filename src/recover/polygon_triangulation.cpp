@@ -57,7 +57,7 @@ bool chord_is_clear(const std::vector<const double*>& loop, geom::Projection pr,
 }  // namespace
 
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
-                                                    int turn) {
+                                                    int turn, const FlatTriangle& flat) {
     const int n = static_cast<int>(loop.size());
     if (n < 3) return {};
     // A chord ij may be a side of a triangle when it is a polygon edge, or
@@ -89,6 +89,7 @@ std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const doub
     // chords.
     const auto valid = [&](int i, int j, int k) {
         if (turn * geom::orient2d(pr, loop[i], loop[j], loop[k]) <= 0) return false;
+        if (flat && flat(i, j, k)) return false;
         return chord_ok(i, j) && chord_ok(j, k) && chord_ok(i, k) && corner_ok(i, j, k) && corner_ok(j, k, i) &&
                corner_ok(k, i, j);
     };

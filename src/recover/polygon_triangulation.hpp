@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "geom/orient2d.hpp"
@@ -20,8 +21,11 @@ namespace cbr::recover {
 // memoized, so the 200-gons of a fanned CAD cap take milliseconds, not
 // seconds). Triangles are index
 // triples (i < j < k), which follow the loop's turn. Empty when there is
-// none (e.g. the projection folds the polygon).
+// none (e.g. the projection folds the polygon). `flat`, when given, names
+// triangles to leave out whatever their sign: corners known to be
+// collinear in exact geometry, whose computed sign is only rounding.
+using FlatTriangle = std::function<bool(int, int, int)>;
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
-                                                    int turn);
+                                                    int turn, const FlatTriangle& flat = {});
 
 }  // namespace cbr::recover

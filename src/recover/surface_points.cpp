@@ -78,6 +78,24 @@ std::size_t SurfacePoints::common_face(VertexId x, VertexId y, VertexId z) const
     return npos;
 }
 
+// An edge holding three distinct points holds at least one added point
+// (it has only two ends): the edge of any added edge point among them is
+// the only candidate.
+bool SurfacePoints::on_one_edge(VertexId x, VertexId y, VertexId z) const {
+    for (const VertexId v : {x, y, z}) {
+        const auto it = added_.find(v);
+        if (it == added_.end() || it->second.face != npos) continue;
+        const Added& e = it->second;
+        const auto on = [&](VertexId w) {
+            if (w == e.a || w == e.b) return true;
+            const auto jt = added_.find(w);
+            return jt != added_.end() && jt->second.face == npos && edge_key(jt->second.a, jt->second.b) == edge_key(e.a, e.b);
+        };
+        return on(x) && on(y) && on(z);
+    }
+    return false;
+}
+
 std::vector<std::uint32_t> SurfacePoints::faces_of_edge(VertexId a, VertexId b) const {
     // The triangles at a that also have b: a's umbrella is short.
     std::vector<std::uint32_t> out;

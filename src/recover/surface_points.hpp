@@ -49,6 +49,9 @@ public:
     bool is_subface(mesh::VertexId x, mesh::VertexId y, mesh::VertexId z) const {
         return common_face(x, y, z) != npos;
     }
+    // x, y, z all lie on one input edge (its ends, or points added on it):
+    // collinear in exact geometry, whatever their rounded coordinates say.
+    bool on_one_edge(mesh::VertexId x, mesh::VertexId y, mesh::VertexId z) const;
     // Input triangles with edge ab.
     std::vector<std::uint32_t> faces_of_edge(mesh::VertexId a, mesh::VertexId b) const;
 
