@@ -60,11 +60,20 @@ bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
     }
     const std::vector<mesh::RingTriangle> tris = mesh::best_ring_triangulation(m_, u, v, s);
     if (tris.empty()) return false;
+    // Only the chords of the ring are new edges: the size bound applies to
+    // them (the ring's sides are edges already, whatever their length).
+    const int n = static_cast<int>(s.size());
+    const auto chord_within_size = [&](int i, int j) {
+        const int gap = (j - i + n) % n;
+        if (gap == 1 || gap == n - 1) return true;
+        return c_.edge_within_size(s.ring[static_cast<std::size_t>(i)], s.ring[static_cast<std::size_t>(j)]);
+    };
     double new_min = 1;
     for (const mesh::RingTriangle& tri : tris) {
         const VertexId a = s.ring[static_cast<std::size_t>(tri[0])], b = s.ring[static_cast<std::size_t>(tri[1])],
                        d = s.ring[static_cast<std::size_t>(tri[2])];
-        if (!c_.edge_within_size(a, b) || !c_.edge_within_size(b, d) || !c_.edge_within_size(a, d)) return false;
+        if (!chord_within_size(tri[0], tri[1]) || !chord_within_size(tri[1], tri[2]) || !chord_within_size(tri[0], tri[2]))
+            return false;
         new_min = std::min({new_min, q(a, b, d, v), q(a, d, b, u)});
         if (new_min <= old_min * kGain) return false;
     }
