@@ -68,6 +68,16 @@ Surface cube(double side = 1.0) {
     return s;
 }
 
+// The unit cube whose top face folds into a low ridge along its diagonal
+// 5-6 (both raised by `rise`): the two top triangles are nearly coplanar,
+// and the tetrahedron 4-5-6-7 under them, flat, spans both.
+Surface ridged_cube(double rise) {
+    Surface s = cube();
+    s.xyz[3 * 5 + 2] += rise;
+    s.xyz[3 * 6 + 2] += rise;
+    return s;
+}
+
 // Sum of |volume| of the tetrahedra of each region (region -> 6 V).
 std::map<std::int32_t, double> region_volumes(const cbr::mesh::TetMesh& m, const std::vector<std::int32_t>& region) {
     std::map<std::int32_t, double> vol;
@@ -302,6 +312,25 @@ TEST_CASE("refine: growth coarsens the inside") {
     cbr::refine::RefineOptions zero;
     zero.growth = 0;
     CHECK(refine_and_check(nine_spheres(), zero, 0.75).stats.field_points == surface.stats.field_points);
+}
+
+TEST_CASE("refine: a sliver spanning two input triangles gets a point") {
+    // Flat against two nearly coplanar input faces, the sliver has no
+    // Delaunay point that removes it (its circumball barely reaches into
+    // the cube); sliver removal inserts one with a chosen cavity. (In this
+    // small cube an edge removal would do too: flips are off, so that the
+    // test sees the sliver step alone.)
+    cbr::refine::RefineOptions with;
+    with.flips = false;
+    cbr::refine::RefineOptions without = with;
+    without.slivers = false;
+    const Outcome kept = refine_and_check(ridged_cube(0.01), without, 0.0);
+    const Outcome removed = refine_and_check(ridged_cube(0.01), with, 0.3);
+    CHECK(kept.quality.minimum < 0.1);
+    CHECK(kept.stats.sliver_points == 0);
+    CHECK(removed.stats.sliver_points >= 1);
+    CHECK(removed.quality.minimum > 0.1);
+    CHECK(removed.quality.percent_below_0_1 == 0);
 }
 
 TEST_CASE("refine: a coarse surface bounds the size next to it") {

@@ -3,6 +3,7 @@
 #include "refine/field_points.hpp"
 #include "refine/quality_flips.hpp"
 #include "refine/refine_context.hpp"
+#include "refine/sliver_removal.hpp"
 #include "refine/smoothing.hpp"
 
 namespace cbr::refine {
@@ -10,6 +11,9 @@ namespace cbr::refine {
 // Flips are tried on tetrahedra below this radius ratio: the others are
 // good already (Table II counts q > 0.4 as good).
 constexpr double kFlipThreshold = 0.5;
+// Tetrahedra below this radius ratio that flips and smoothing leave get a
+// point with a chosen cavity (sliver_removal.hpp); Table II counts them bad.
+constexpr double kSliverThreshold = 0.1;
 
 RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
                         const std::vector<std::int32_t>& region_of_slot, const std::vector<mesh::VertexId>& steiner,
@@ -20,9 +24,12 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
     for (int pass = 0; pass < options.optimisation_passes; ++pass) {  // step (e)
         const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold) : 0;
         const std::size_t moves = options.smoothing ? smooth_vertices(c) : 0;
+        const std::size_t slivers = options.slivers ? remove_slivers(c, kSliverThreshold) : 0;
         stats.flips += flips;
         stats.smoothed += moves;
-        if (flips == 0 && moves == 0) break;
+        stats.field_points += slivers;
+        stats.sliver_points += slivers;
+        if (flips == 0 && moves == 0 && slivers == 0) break;
     }
     for (mesh::TetId t = 0; t < m.slot_count(); ++t)
         if (c.in_domain(t) && !c.tet_within_size(t)) ++stats.unresolved_size;

@@ -33,6 +33,7 @@ struct RefineOptions {
     // For tests: switch off one part of the optimisation.
     bool flips = true;
     bool smoothing = true;
+    bool slivers = true;  // sliver removal (sliver_removal.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -55,6 +56,7 @@ struct RefineStats {
     std::size_t cavity_tets = 0;        // tetrahedra removed by the insertions, in all (cost measure)
     std::size_t flips = 0;              // quality flips done (2-3 and edge removals)
     std::size_t smoothed = 0;           // vertex moves accepted
+    std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
 };
 
 }  // namespace cbr::refine

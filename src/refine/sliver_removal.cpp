@@ -1,0 +1,199 @@
+#include "refine/sliver_removal.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "geom/predicates.hpp"
+#include "mesh/errors.hpp"
+#include "recover/protected_insertion.hpp"
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+using mesh::facet_tet;
+using mesh::kFaceVertices;
+using mesh::TetId;
+using mesh::VertexId;
+
+// The star must be this much better than the cavity it replaces.
+constexpr double kSliverGain = 2.0;
+// Heights of the candidates above a constraint face of the sliver, in mean
+// edge lengths of that face (0.6: about a regular tetrahedron's apex).
+constexpr double kApexHeights[] = {0.6, 0.3, 0.15};
+// Rings of neighbours taken into the cavity.
+constexpr int kMaxReach = 6;
+
+struct BoundaryFace {
+    std::array<const double*, 3> corners;  // p is on the cavity's side when orient3d(corners, p) > 0
+};
+
+class SliverRemover {
+public:
+    explicit SliverRemover(RefineContext& c) : c_(c), m_(c.m) {}
+    bool remove(TetId sliver);
+
+private:
+    double quality(TetId t) const {
+        const VertexId* v = m_.vertices(t);
+        return radius_ratio(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
+    }
+    bool in_cavity(TetId t) const { return std::find(cavity_.begin(), cavity_.end(), t) != cavity_.end(); }
+    void collect_boundary();
+    double star_quality(const double* p) const;
+    void add_candidates(TetId sliver);
+    TetId containing(const double* p) const;
+
+    RefineContext& c_;
+    mesh::TetMesh& m_;
+    std::vector<TetId> cavity_;
+    std::vector<BoundaryFace> boundary_;
+    std::vector<Point> candidates_;
+};
+
+void SliverRemover::collect_boundary() {
+    boundary_.clear();
+    for (TetId t : cavity_) {
+        const VertexId* v = m_.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            if (!m_.is_constrained(t, f) && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
+            const int* k = kFaceVertices[f];
+            boundary_.push_back({{m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]])}});
+        }
+    }
+}
+
+// The worst radius ratio of the star of p over the cavity's boundary; -1
+// when a boundary face does not see p strictly (exact).
+double SliverRemover::star_quality(const double* p) const {
+    double worst = 1;
+    for (const BoundaryFace& f : boundary_) {
+        if (geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) <= 0) return -1;
+        worst = std::min(worst, radius_ratio(f.corners[0], f.corners[1], f.corners[2], p));
+    }
+    return worst;
+}
+
+void SliverRemover::add_candidates(TetId sliver) {
+    candidates_.clear();
+    const auto centroid = [&](TetId t) {
+        Point g = {0, 0, 0};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) g[k] += 0.25 * m_.point(m_.vertex(t, i))[k];
+        return g;
+    };
+    for (TetId t : cavity_) candidates_.push_back(centroid(t));  // the sliver's first
+    Point all = {0, 0, 0};
+    for (const Point& g : candidates_)
+        for (int k = 0; k < 3; ++k) all[k] += g[k] / static_cast<double>(candidates_.size());
+    candidates_.push_back(all);
+    // Above each constraint face of the sliver, on its side: the apex of a
+    // well-shaped tetrahedron on that face.
+    const VertexId* v = m_.vertices(sliver);
+    for (int f = 0; f < 4; ++f) {
+        if (!m_.is_constrained(sliver, f)) continue;
+        const int* k = kFaceVertices[f];
+        const double* a = m_.point(v[k[0]]);
+        const double* b = m_.point(v[k[1]]);
+        const double* d = m_.point(v[k[2]]);
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        // (a, b, d) in kFaceVertices order sees the sliver on its positive
+        // side: u x w points into the sliver.
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(len > 0)) continue;
+        const double edge = (std::sqrt(squared_distance(a, b)) + std::sqrt(squared_distance(b, d)) +
+                             std::sqrt(squared_distance(a, d))) / 3;
+        for (double height : kApexHeights) {
+            Point p;
+            for (int i = 0; i < 3; ++i) p[i] = (a[i] + b[i] + d[i]) / 3 + height * edge * n[i] / len;
+            candidates_.push_back(p);
+        }
+    }
+}
+
+// A cavity tetrahedron that contains p (closed), or kNoTet.
+TetId SliverRemover::containing(const double* p) const {
+    for (TetId t : cavity_) {
+        const VertexId* v = m_.vertices(t);
+        bool inside = true;
+        for (int f = 0; f < 4 && inside; ++f) {
+            const int* k = kFaceVertices[f];
+            inside = geom::orient3d(m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]), p) >= 0;
+        }
+        if (inside) return t;
+    }
+    return mesh::kNoTet;
+}
+
+bool SliverRemover::remove(TetId sliver) {
+    const std::int32_t region = c_.region(sliver);
+    // Cavities of growing reach: the sliver and its neighbours, then theirs
+    // too, and so on (a bigger cavity takes in a candidate that a small
+    // one's boundary hides: near a sharp feature the tetrahedra around a
+    // sliver are thin too); the first reach with a valid star, its best
+    // candidate.
+    std::vector<TetId> best_cavity;
+    Point best_point = {0, 0, 0};
+    double best = 0;
+    cavity_.assign(1, sliver);
+    for (int reach = 1; reach <= kMaxReach; ++reach) {
+        const std::size_t outer = cavity_.size();
+        for (std::size_t i = 0; i < outer; ++i) {
+            const TetId t = cavity_[i];
+            for (int f = 0; f < 4; ++f) {
+                if (m_.is_constrained(t, f)) continue;
+                const TetId n = facet_tet(m_.neighbor(t, f));
+                if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) cavity_.push_back(n);
+            }
+        }
+        double old_min = 1;
+        for (TetId t : cavity_) old_min = std::min(old_min, quality(t));
+        collect_boundary();
+        add_candidates(sliver);
+        for (const Point& p : candidates_) {
+            const double q = star_quality(p.data());
+            if (q > kSliverGain * old_min && q > best) best = q, best_point = p, best_cavity = cavity_;
+        }
+        if (!best_cavity.empty()) break;  // the smallest cavity that works: the least change
+    }
+    if (best_cavity.empty()) return false;
+    cavity_ = best_cavity;
+    const Point* chosen = &best_point;
+    if (!chosen) return false;
+    const TetId start = containing(chosen->data());
+    if (start == mesh::kNoTet) return false;
+    const double h = c_.size.for_new_point(m_, start, chosen->data());
+    const VertexId id = m_.add_points(chosen->data(), 1);
+    const recover::ProtectedInsertResult r =
+        recover::insert_protected_in_cavity(m_, id, start, cavity_, {}, /*keep_seed=*/true);
+    // Every boundary face sees the point: the kernel's correction has
+    // nothing to change, and the star is the one judged above.
+    if (!r.ok || r.removed != 0 || r.added != 0) {
+        if (r.ok) throw InternalError("sliver removal: the cavity correction changed a checked star");
+        m_.truncate_vertices(id);
+        return false;
+    }
+    c_.add_vertex(h);
+    for (TetId t : r.created) c_.set_region(t, region);
+    return true;
+}
+
+}  // namespace
+
+std::size_t remove_slivers(RefineContext& c, double threshold) {
+    SliverRemover remover(c);
+    std::size_t inserted = 0;
+    const std::size_t slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t) {
+        if (!c.in_domain(t)) continue;
+        const VertexId* v = c.m.vertices(t);
+        if (radius_ratio(c.m.point(v[0]), c.m.point(v[1]), c.m.point(v[2]), c.m.point(v[3])) >= threshold) continue;
+        inserted += remover.remove(t);
+    }
+    return inserted;
+}
+
+}  // namespace cbr::refine

@@ -1,0 +1,33 @@
+// Removal of slivers that Delaunay refinement cannot reach (Du & Wang
+// 2004, §6 step (e), "optimisation"). A sliver whose circumcentre is
+// refused (outside its region, or too close to the surface) and whose
+// circumradius is small stays after refinement; two kinds dominate the
+// worst elements of the shared surfaces: a flat tetrahedron spanning two
+// nearly coplanar input triangles that share an edge (four surface
+// vertices), and flat tetrahedra among field points crowded near a sharp
+// feature. Flips and smoothing do not always remove them, and no
+// Delaunay insertion can without a point nearly on the surface (the
+// sliver's circumball barely reaches into the domain).
+//
+// Here a point goes in with a chosen cavity instead (the protected
+// insertion kernel, recover::insert_protected_in_cavity): the sliver and
+// its neighbours across its non-constraint faces, all in one region. The
+// point is the best of a few candidates (centroids of the sliver, of the
+// cavity, of each neighbour, and points above the sliver's constraint
+// faces), judged exactly before anything changes: every face of the
+// cavity's boundary must see it strictly (so the star is valid and the
+// point is strictly inside the region, never on the surface), and the
+// star's worst radius ratio must beat the cavity's by kSliverGain.
+#pragma once
+
+#include <cstddef>
+
+#include "refine/refine_context.hpp"
+
+namespace cbr::refine {
+
+// Tries every tetrahedron of the bounded regions with radius ratio below
+// `threshold`; returns the number of points inserted.
+std::size_t remove_slivers(RefineContext& c, double threshold);
+
+}  // namespace cbr::refine
