@@ -28,6 +28,10 @@ constexpr double kMinSurfaceGap = 0.1;
 // fraction of the local size (see meets_quality).
 constexpr double kMinQualityRadius = 0.5;
 
+// A circumcentre nearer than this fraction of the circumradius to a vertex
+// of its cavity is refused (see try_circumcentre).
+constexpr double kMinCircumcentreGap = 0.1;
+
 // Slivers: a radius ratio below this fails the quality bound whatever the
 // radius-edge ratio says (a sliver can have a fine radius-edge ratio), and
 // gets its centroid when its circumcentre is refused, if the star is at
@@ -61,6 +65,7 @@ private:
         bool encroaches = false;
         double gap = std::numeric_limits<double>::infinity();
         double star_quality = 2;  // when asked
+        double nearest2 = std::numeric_limits<double>::infinity();  // squared distance to the nearest cavity vertex
     };
     Probe probe(TetId start, const double* p, bool want_star = false) const;
     bool try_centroid(TetId t);
@@ -127,6 +132,7 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) cons
             const double* a = m_.point(v[k[0]]);
             const double* b = m_.point(v[k[1]]);
             const double* c = m_.point(v[k[2]]);
+            for (const double* corner : {a, b, c}) out.nearest2 = std::min(out.nearest2, squared_distance(p, corner));
             if (want_star && out.star_quality >= 0) {
                 if (geom::orient3d(a, b, c, p) <= 0) out.star_quality = -1;
                 else out.star_quality = std::min(out.star_quality, radius_ratio(a, b, c, p));
@@ -191,7 +197,15 @@ bool Refiner::try_circumcentre(TetId t) {
     if (!circumcentre(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), cc)) return false;
     const Location loc = locate_in_region(c_, t, cc.data());
     if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
-    if (probe(loc.tet, cc.data()).encroaches) return false;
+    const Probe pr = probe(loc.tet, cc.data());
+    if (pr.encroaches) return false;
+    // In a Delaunay cavity no vertex is nearer to the circumcentre than the
+    // circumradius; the cavity correction and the protected faces can
+    // leave one much nearer, and a point there makes needles and slivers
+    // that nothing removes later (common3d-fandisk: two field points 5e-6
+    // apart, at a local size of 0.05).
+    const double r2 = squared_distance(cc.data(), m_.point(v[0]));
+    if (pr.nearest2 < kMinCircumcentreGap * kMinCircumcentreGap * r2) return false;
     return insert(cc, loc.tet);
 }
 
