@@ -7,6 +7,8 @@
 // bit-identical.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -389,6 +391,79 @@ TEST_CASE("replace_tets refusals leave the mesh bit-identical") {
         CHECK(created[1] == old[1]);
         require_valid(m);
     }
+}
+
+// ConeReplacer is replace_tets specialised to the star of a new point: on
+// random regions (connected, of 1 to 12 tetrahedra, ghosts included, with
+// random constraint faces) and points (near or inside a tetrahedron of the
+// region, or anywhere around the mesh), both give the same verdict and the
+// same mesh, slot for slot.
+TEST_CASE("ConeReplacer agrees with replace_tets on cones over random regions") {
+    TetMesh base = delaunay_mesh(cbr::test::random_points(120, 21));
+    Rng rng(23);
+    for (TetId t = 0; t < base.slot_count(); ++t)
+        for (int f = 0; f < 4; ++f)
+            if (rng() % 40 == 0) mark_face(base, t, f);
+    ConeReplacer cones;  // one replacer for every trial: its scratch is reused
+    std::map<ReplaceResult, int> verdicts;
+    for (int trial = 0; trial < 3000; ++trial) {
+        TetMesh m = base;
+        // A connected region grown from a random tetrahedron.
+        std::vector<TetId> old{random_live(m, rng)};
+        const std::size_t size = 1 + rng() % 12;
+        for (int tries = 0; old.size() < size && tries < 100; ++tries) {
+            const TetId n = facet_tet(m.neighbor(old[rng() % old.size()], static_cast<int>(rng() % 4)));
+            if (std::find(old.begin(), old.end(), n) == old.end()) old.push_back(n);
+        }
+        // The point: the centroid of a finite region tetrahedron, moved a
+        // little at random, or a random point around the mesh.
+        std::array<double, 3> xyz{};
+        const TetId host = old[rng() % old.size()];
+        std::uniform_real_distribution<double> jitter(-0.05, 0.05), anywhere(-0.2, 1.2);
+        if (!m.is_ghost(host) && rng() % 4 != 0) {
+            for (int i = 0; i < 4; ++i)
+                for (int k = 0; k < 3; ++k) xyz[k] += 0.25 * m.point(m.vertex(host, i))[k];
+            if (rng() % 2)
+                for (double& x : xyz) x += jitter(rng);
+        } else {
+            for (double& x : xyz) x = anywhere(rng);
+        }
+        const VertexId p = m.add_points(xyz.data(), 1);
+        // The cone list replace_tets is given: by region tetrahedron, then face.
+        std::vector<Tet> fresh;
+        for (TetId t : old)
+            for (int f = 0; f < 4; ++f) {
+                if (std::find(old.begin(), old.end(), facet_tet(m.neighbor(t, f))) != old.end()) continue;
+                Tet c = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+                c[static_cast<std::size_t>(f)] = p;
+                fresh.push_back(c);
+            }
+        TetMesh by_faces = m;
+        std::vector<TetId> created_by_faces, created_by_cones;
+        const ReplaceResult expected = replace_tets(by_faces, old, fresh, &created_by_faces);
+        const ReplaceResult got = cones.replace(m, old, p, &created_by_cones);
+        REQUIRE(got == expected);
+        CHECK((Snapshot(m) == Snapshot(by_faces)));
+        CHECK(created_by_cones == created_by_faces);
+        if (got == ReplaceResult::kDone) require_valid(m);
+        ++verdicts[got];
+    }
+    // The trials reach every verdict a cone can get.
+    CHECK(verdicts[ReplaceResult::kDone] > 100);
+    CHECK(verdicts[ReplaceResult::kNotTiling] > 0);
+    CHECK(verdicts[ReplaceResult::kRemovesConstraint] > 0);
+    CHECK(verdicts[ReplaceResult::kInverted] > 100);
+    CHECK(verdicts[ReplaceResult::kNotConvex] > 0);
+    // Refusals of bad input, as replace_tets: an empty region, a slot listed
+    // twice, a point that is a vertex of the region.
+    TetMesh m = base;
+    const Snapshot before(m);
+    const TetId t = random_live(m, rng);
+    CHECK(cones.replace(m, {}, 0) == ReplaceResult::kBadInput);
+    CHECK(cones.replace(m, {t, t}, 0) == ReplaceResult::kBadInput);
+    const VertexId corner = m.vertex(t, 0) == kGhostVertex ? m.vertex(t, 1) : m.vertex(t, 0);
+    CHECK(cones.replace(m, {t}, corner) == ReplaceResult::kBadInput);
+    CHECK((Snapshot(m) == before));
 }
 
 TEST_CASE("flips that would dent the hull are refused") {

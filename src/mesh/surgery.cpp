@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <tuple>
 
 #include "geom/predicates.hpp"
+#include "mesh/slot_marks.hpp"
 
 namespace cbr::mesh {
 namespace {
@@ -28,8 +28,10 @@ struct FaceEntry {
     std::uint8_t marked;  // boundary: the old face's constraint mark
 };
 
+// By vertex set only: a group's entries may come in any order (connect_group
+// does not depend on it), so nothing finer is worth comparing.
 bool entry_less(const FaceEntry& a, const FaceEntry& b) {
-    return std::tie(a.head, a.tail, a.kind, a.ref) < std::tie(b.head, b.tail, b.kind, b.ref);
+    return a.head != b.head ? a.head < b.head : a.tail < b.tail;
 }
 
 std::uint8_t sort3(std::array<VertexId, 3>& k) {
@@ -126,9 +128,10 @@ void set_partner(Plan& plan, FacetRef mine, FacetRef other, bool outside, bool m
     if (marked) plan.marks[facet_tet(mine)] |= static_cast<std::uint8_t>(1u << facet_face(mine));
 }
 
-// One group of entries with the same vertex set (sorted by kind: fresh,
-// boundary, constraint). Valid groups: one boundary face and one fresh
-// face of the same orientation, or two fresh faces of opposite ones.
+// One group of entries with the same vertex set, in any order (the verdict
+// and the links only count and pair them). Valid groups: one boundary face
+// and one fresh face of the same orientation, or two fresh faces of
+// opposite ones.
 ReplaceResult connect_group(const FaceEntry* begin, const FaceEntry* end, Plan& plan) {
     const FaceEntry* fresh[2] = {nullptr, nullptr};
     int n_fresh = 0;
@@ -237,22 +240,26 @@ bool hull_stays_convex(const TetMesh& m, const std::vector<TetId>& old, const Pl
     return true;
 }
 
+// The checks that follow the face matching.
+ReplaceResult check_geometry(const TetMesh& m, const std::vector<TetId>& old, const Plan& plan) {
+    if (!positively_oriented(m, plan.tets)) return ReplaceResult::kInverted;
+    if (!hull_stays_convex(m, old, plan)) return ReplaceResult::kNotConvex;
+    return ReplaceResult::kDone;
+}
+
 ReplaceResult check(const TetMesh& m, const std::vector<TetId>& old, const std::vector<Tet>& fresh, Plan& plan) {
     std::vector<TetId> sorted_old;
     if (!valid_old(m, old, sorted_old) || !normalise_fresh(m, fresh, plan.tets)) return ReplaceResult::kBadInput;
     std::vector<FaceEntry> faces = collect_faces(m, old, sorted_old, plan.tets);
     const ReplaceResult r = match_faces(faces, plan);
     if (r != ReplaceResult::kDone) return r;
-    if (!positively_oriented(m, plan.tets)) return ReplaceResult::kInverted;
-    if (!hull_stays_convex(m, old, plan)) return ReplaceResult::kNotConvex;
-    return ReplaceResult::kDone;
+    return check_geometry(m, old, plan);
 }
 
 // The old slots first, then new ones. If an allocation throws, the slots
 // taken so far are flagged free again (release_tet sets the flag before it
 // pushes on the free list, so even a second failure leaves the mesh valid).
-std::vector<TetId> take_slots(TetMesh& m, const std::vector<TetId>& old, std::size_t count) {
-    std::vector<TetId> slots;
+void take_slots(TetMesh& m, const std::vector<TetId>& old, std::size_t count, std::vector<TetId>& slots) {
     slots.reserve(count);
     slots.assign(old.begin(), old.begin() + static_cast<std::ptrdiff_t>(std::min(old.size(), count)));
     try {
@@ -266,7 +273,6 @@ std::vector<TetId> take_slots(TetMesh& m, const std::vector<TetId>& old, std::si
         }
         throw;
     }
-    return slots;
 }
 
 void write_plan(TetMesh& m, const Plan& plan, const std::vector<TetId>& slots) {
@@ -288,6 +294,133 @@ void write_plan(TetMesh& m, const Plan& plan, const std::vector<TetId>& slots) {
     }
 }
 
+// Carries out a checked plan: slots, tetrahedra and links, surplus old
+// slots freed; `created` (optional) gets the slots in the order of the plan.
+void apply_plan(TetMesh& m, const std::vector<TetId>& old, const Plan& plan, std::vector<TetId>& slots,
+                std::vector<TetId>* created) {
+    if (created) {
+        created->clear();
+        created->reserve(plan.tets.size());
+    }
+    take_slots(m, old, plan.tets.size(), slots);
+    // From here on nothing throws but the free list's growth, and a slot
+    // that fails to go on it is flagged free already (leaked, not live):
+    // the replacement is complete either way.
+    write_plan(m, plan, slots);
+    for (std::size_t i = slots.size(); i < old.size(); ++i) {
+        try {
+            m.release_tet(old[i]);
+        } catch (...) {
+        }
+    }
+    if (created) created->assign(slots.begin(), slots.end());
+}
+
+// --- the cone of a new point (ConeReplacer) ---------------------------------
+
+// The faces through p, found by the boundary edge they stand on: an
+// open-addressing table keyed by the edge's sorted vertex pair.
+struct EdgeSlot {
+    std::uint64_t key = 0;  // 0: empty (a key is never 0: its two ids differ)
+    FacetRef first = 0;     // the first cone half-facet on this edge (4 * cone + face)
+    std::uint8_t parity = 0;  // that face's orientation parity (as in FaceEntry)
+    std::uint8_t count = 0;   // cone faces on this edge so far
+};
+
+std::uint64_t edge_key(VertexId a, VertexId b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+}
+
+constexpr std::uint8_t kInOld = 1;  // ConeReplacer's mark: listed in `old`
+
+}  // namespace
+
+struct ConeReplacer::Scratch {
+    Plan plan;
+    SlotMarks in_old;            // per slot: kInOld
+    std::vector<EdgeSlot> edges;  // see EdgeSlot; a power of two long
+    std::vector<TetId> slots;
+};
+
+namespace {
+
+// The cones over the boundary faces of `old` (by tetrahedron of `old`, then
+// face) in plan.tets, each cone's face on the boundary linked to the
+// outside with its constraint mark; `interior_constraint` tells whether a
+// constraint face lies between two tetrahedra of `old`. False when
+// replace_tets would reject the input (kBadInput). `old` is marked in_old.
+bool build_cones(const TetMesh& m, const std::vector<TetId>& old, VertexId p, const SlotMarks& in_old, Plan& plan,
+                 bool& interior_constraint) {
+    plan.tets.clear();
+    plan.partner.clear();
+    plan.outside.clear();
+    plan.marks.clear();
+    interior_constraint = false;
+    for (TetId t : old) {
+        const VertexId* v = m.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            if (in_old.has(facet_tet(m.neighbor(t, f)), kInOld)) {
+                interior_constraint |= m.is_constrained(t, f);
+                continue;
+            }
+            Tet cone = {v[0], v[1], v[2], v[3]};
+            for (int i = 0; i < 4; ++i)
+                if (i != f && cone[static_cast<std::size_t>(i)] == p) return false;  // a repeated vertex
+            cone[static_cast<std::size_t>(f)] = p;
+            plan.tets.push_back(cone);
+            const std::uint8_t mark = m.is_constrained(t, f) ? static_cast<std::uint8_t>(1u << f) : 0;
+            for (int g = 0; g < 4; ++g) {
+                plan.partner.push_back(g == f ? m.neighbor(t, f) : 0);
+                plan.outside.push_back(g == f ? 1 : 0);
+            }
+            plan.marks.push_back(mark);
+        }
+    }
+    return !plan.tets.empty();
+}
+
+// Links the faces through p: each stands on an edge of the boundary, and
+// the region is tiled only if every such edge carries exactly two of them,
+// of opposite orientations (what match_faces checks on their sorted
+// triples). Returns kDone or kNotTiling.
+ReplaceResult link_faces_through_apex(Plan& plan, VertexId p, std::vector<EdgeSlot>& table) {
+    std::size_t size = 16;
+    while (size < 6 * plan.tets.size()) size *= 2;  // 3 faces per cone; at most half full
+    table.assign(size, EdgeSlot{});
+    const std::size_t mask = size - 1;
+    std::size_t unpaired = 0;
+    for (std::size_t j = 0; j < plan.tets.size(); ++j) {
+        const Tet& cone = plan.tets[j];
+        const int apex = static_cast<int>(std::find(cone.begin(), cone.end(), p) - cone.begin());
+        for (int g = 0; g < 4; ++g) {
+            if (g == apex) continue;  // the boundary face, linked already
+            std::array<VertexId, 3> sorted = {cone[kFaceVertices[g][0]], cone[kFaceVertices[g][1]],
+                                              cone[kFaceVertices[g][2]]};
+            const std::uint8_t parity = sort3(sorted);
+            // The edge: the face's vertices other than p, at the cone
+            // positions x < y other than apex and g (they sum to 6).
+            const int x = apex != 0 && g != 0 ? 0 : apex != 1 && g != 1 ? 1 : 2;
+            const int y = 6 - apex - g - x;
+            const std::uint64_t k = edge_key(cone[static_cast<std::size_t>(x)], cone[static_cast<std::size_t>(y)]);
+            std::size_t i = static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+            while (table[i].key != 0 && table[i].key != k) i = (i + 1) & mask;
+            EdgeSlot& e = table[i];
+            const FacetRef half = make_facet(static_cast<TetId>(j), g);
+            if (e.key == 0) {
+                e = {k, half, parity, 1};
+                ++unpaired;
+                continue;
+            }
+            if (++e.count > 2 || e.parity == parity) return ReplaceResult::kNotTiling;
+            plan.partner[half] = e.first;
+            plan.partner[e.first] = half;
+            --unpaired;
+        }
+    }
+    return unpaired == 0 ? ReplaceResult::kDone : ReplaceResult::kNotTiling;
+}
+
 }  // namespace
 
 const char* to_string(ReplaceResult r) {
@@ -307,22 +440,37 @@ ReplaceResult replace_tets(TetMesh& m, const std::vector<TetId>& old, const std:
     Plan plan;
     const ReplaceResult r = check(m, old, fresh, plan);
     if (r != ReplaceResult::kDone) return r;
-    if (created) {
-        created->clear();
-        created->reserve(plan.tets.size());
+    std::vector<TetId> slots;
+    apply_plan(m, old, plan, slots, created);
+    return ReplaceResult::kDone;
+}
+
+ConeReplacer::ConeReplacer() : scratch_(std::make_unique<Scratch>()) {}
+ConeReplacer::~ConeReplacer() = default;
+
+// The checks of replace_tets in its order. Its matching of sorted face
+// triples reduces here to the faces through p (link_faces_through_apex):
+// in a valid mesh a triangle bounds two tetrahedra, so the boundary faces
+// of `old` are distinct triangles, each the face of exactly one cone with
+// the same vertex order (same orientation), and none of them, nor a face
+// inside `old`, contains p (in no tetrahedron).
+ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, VertexId p,
+                                    std::vector<TetId>* created) {
+    Scratch& s = *scratch_;
+    if (old.empty() || p >= m.vertex_count()) return ReplaceResult::kBadInput;
+    s.in_old.new_round(m.slot_count());
+    for (TetId t : old) {
+        if (t >= m.slot_count() || m.is_free(t) || s.in_old.has(t, kInOld)) return ReplaceResult::kBadInput;
+        s.in_old.set(t, kInOld);
     }
-    const std::vector<TetId> slots = take_slots(m, old, plan.tets.size());
-    // From here on nothing throws but the free list's growth, and a slot
-    // that fails to go on it is flagged free already (leaked, not live):
-    // the replacement is complete either way.
-    write_plan(m, plan, slots);
-    for (std::size_t i = slots.size(); i < old.size(); ++i) {
-        try {
-            m.release_tet(old[i]);
-        } catch (...) {
-        }
-    }
-    if (created) created->assign(slots.begin(), slots.end());
+    bool interior_constraint = false;
+    if (!build_cones(m, old, p, s.in_old, s.plan, interior_constraint)) return ReplaceResult::kBadInput;
+    const ReplaceResult tiling = link_faces_through_apex(s.plan, p, s.edges);
+    if (tiling != ReplaceResult::kDone) return tiling;
+    if (interior_constraint) return ReplaceResult::kRemovesConstraint;
+    const ReplaceResult r = check_geometry(m, old, s.plan);
+    if (r != ReplaceResult::kDone) return r;
+    apply_plan(m, old, s.plan, s.slots, created);
     return ReplaceResult::kDone;
 }
 

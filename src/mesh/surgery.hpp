@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -62,5 +63,31 @@ const char* to_string(ReplaceResult r);
 ReplaceResult replace_tets(TetMesh& m, const std::vector<TetId>& old,
                            const std::vector<std::array<VertexId, 4>>& fresh,
                            std::vector<TetId>* created = nullptr);
+
+// replace_tets for the star of a new point: replaces `old` by the cone from
+// vertex p (in no tetrahedron yet) over the boundary faces of `old`, listed
+// by tetrahedron of `old` in the order given, then by face. Each cone is
+// the tetrahedron with p in place of the vertex opposite its face. Same
+// result, checks, effects and `created` as replace_tets(m, old, fresh) with
+// that list as `fresh`; only cheaper, for callers that insert many points:
+// the face matching follows the cone's structure (a boundary face is the
+// face of one cone; a face through p is shared by the two cones of a
+// boundary edge) instead of sorting every face, and the scratch storage is
+// kept from one call to the next.
+class ConeReplacer {
+public:
+    ConeReplacer();
+    ~ConeReplacer();
+    ConeReplacer(const ConeReplacer&) = delete;
+    ConeReplacer& operator=(const ConeReplacer&) = delete;
+
+    ReplaceResult replace(TetMesh& m, const std::vector<TetId>& old, VertexId p,
+                          std::vector<TetId>* created = nullptr);
+
+    struct Scratch;  // surgery.cpp
+
+private:
+    std::unique_ptr<Scratch> scratch_;
+};
 
 }  // namespace cbr::mesh

@@ -136,7 +136,7 @@ VertexId ConformingRecovery::insert(const double* xyz, std::vector<TetId> cavity
         const VertexId* v = m_.vertices(t);
         return points_.is_subface(v[kFaceVertices[f][0]], v[kFaceVertices[f][1]], v[kFaceVertices[f][2]]);
     };
-    const ProtectedInsertResult r = insert_protected_in_cavity(m_, p, start, cavity, subface, keep_cavity);
+    const ProtectedInsertResult& r = inserter_.insert_in_cavity(m_, p, start, cavity, subface, keep_cavity);
     if (!r.ok) {
         m_.truncate_vertices(p);
         why_ = "protected insertion refused an intersection point: " + r.why;

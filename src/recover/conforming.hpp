@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
+#include "recover/protected_insertion.hpp"
 #include "recover/surface_points.hpp"
 
 namespace cbr::recover {
@@ -53,6 +54,7 @@ private:
     SurfacePoints& points_;
     std::vector<mesh::TetId> incident_;
     std::vector<mesh::TetId> scratch_;
+    ProtectedInserter inserter_;  // keeps its scratch storage across insertions
     std::string why_;
 };
 

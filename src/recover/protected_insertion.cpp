@@ -1,6 +1,12 @@
 // Protected insertion with the cavity correction of §5.1. The cavity is
-// kept in this file's own sets (no scratch marks on the mesh), so every
-// failure before replace_tets leaves the mesh untouched.
+// kept in the inserter's own marks and lists (no scratch marks on the
+// mesh), so every failure before replace_tets leaves the mesh untouched.
+//
+// The cavity's state is one mark byte per slot (SlotMarks: cleared in O(1)
+// per insertion) and the list of its members in the order they joined.
+// Whatever depends on the order — the sweeps of the correction, the star
+// and so the ids of the new tetrahedra — walks the members sorted by id
+// (sorted_members), the order an ordered set of ids would give.
 //
 // Why the correction terminates: a tetrahedron that leaves the cavity is
 // "rejected" and never enters it again, and one enters at most once (only
@@ -14,15 +20,16 @@
 // signs positive they tile the cavity exactly (and p is interior to it).
 // What is left to check is combinatorial — the cavity is one component
 // and no vertex is interior to it (it would vanish) — done here, and the
-// face matching, done again by replace_tets.
+// face matching, done again when the star replaces the cavity
+// (mesh::ConeReplacer: the checks of replace_tets).
 #include "recover/protected_insertion.hpp"
 
+#include <algorithm>
 #include <array>
-#include <set>
-#include <unordered_set>
 
 #include "geom/flat_cone.hpp"
 #include "geom/predicates.hpp"
+#include "mesh/slot_marks.hpp"
 #include "mesh/surgery.hpp"
 
 namespace cbr::recover {
@@ -37,60 +44,89 @@ using mesh::VertexId;
 
 namespace {
 
-enum class Pass { kStable, kChanged, kStartLost };
+// A face of the cavity: face f of its member t.
+struct CavityFace {
+    TetId t;
+    int f;
+};
 
+}  // namespace
+
+// What an inserter keeps from one insertion to the next (all of it is
+// reset per insertion; only the allocations are kept).
+struct ProtectedInserter::Scratch {
+    mesh::SlotMarks tet_marks;      // per slot: the cavity's state (Cavity::kIn, ...)
+    mesh::SlotMarks reached;        // per slot: keep_start_component's search
+    mesh::SlotMarks vertex_marks;   // per vertex: drop_interior_vertices
+    std::vector<TetId> members;     // cavity tetrahedra; may still list removed ones
+    std::vector<TetId> stack;       // depth-first searches
+    std::vector<CavityFace> faces;  // boundary()
+    mesh::ConeReplacer star;        // replaces the cavity by the star of p
+    ProtectedInsertResult result;
+};
+
+namespace {
+
+enum class Pass { kStable, kChanged, kStartLost };
 
 class Cavity {
 public:
-    Cavity(const TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked)
-        : m_(m), p_(m.point(p)), pid_(p), start_(start), blocked_(blocked) {}
+    Cavity(const TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked, ProtectedInserter::Scratch& s)
+        : m_(m), p_(m.point(p)), start_(start), blocked_(blocked), s_(s) {
+        s_.tet_marks.new_round(m.slot_count());
+        s_.members.clear();
+    }
 
     // The seed's finite tetrahedra are never dropped by the correction (it
     // grows past a face p does not see instead, or gives up).
     void keep_seed() {
-        for (TetId t : in_)
-            if (!m_.is_ghost(t)) keep_.insert(t);
+        for (TetId t : s_.members)
+            if (!m_.is_ghost(t)) s_.tet_marks.set(t, kKeep);
     }
 
     bool check_start(std::string& why) const;
     void grow();
     bool seed(const std::vector<TetId>& tets, std::string& why);
     bool correct(std::string& why);
-    std::vector<TetId> tets() const { return {in_.begin(), in_.end()}; }
-    std::vector<std::array<VertexId, 4>> star() const;
-    std::size_t size() const { return in_.size(); }
+    // The members, sorted by id.
+    const std::vector<TetId>& tets() { return sorted_members(); }
+    std::size_t size() const { return count_; }
     std::size_t removed() const { return removed_; }
     std::size_t added() const { return added_; }
 
 private:
-    struct Face {
-        TetId t;
-        int f;
-    };
+    // A slot's marks (s_.tet_marks), for the current insertion.
+    static constexpr std::uint8_t kIn = 1u << 0;        // in the cavity
+    static constexpr std::uint8_t kRejected = 1u << 1;  // left the cavity: never again
+    static constexpr std::uint8_t kKeep = 1u << 2;      // must stay (keep_seed)
+    static constexpr std::uint8_t kSeen = 1u << 3;      // tested by grow()
+
     const double* pt(VertexId v) const { return m_.point(v); }
     TetId across(TetId t, int f) const { return facet_tet(m_.neighbor(t, f)); }
-    bool in(TetId t) const { return in_.count(t) != 0; }
+    bool in(TetId t) const { return s_.tet_marks.has(t, kIn); }
+    void add(TetId t);
+    const std::vector<TetId>& sorted_members();
     bool is_protected(TetId t, int f) const;
     bool can_join(TetId n) const;
     bool can_take_in(TetId t, int f, TetId n) const;
     bool nearly_flat(TetId t, int f) const;
     bool in_conflict(TetId t) const;
     int face_sign(TetId t, int f) const;
-    std::vector<Face> boundary() const;
+    const std::vector<CavityFace>& boundary();
     void remove(TetId t);
     Pass correction_pass();
     bool keep_start_component();
     bool drop_interior_vertices();
+    std::size_t vertex_slot(VertexId v) const { return v == kGhostVertex ? m_.vertex_count() : v; }
 
     const TetMesh& m_;
     const double* p_;
-    VertexId pid_;
     TetId start_;
     const BlockedFace& blocked_;
-    std::set<TetId> in_;                  // ordered: deterministic star
-    std::unordered_set<TetId> rejected_;  // left the cavity: never again
-    std::unordered_set<TetId> keep_;      // must stay (keep_seed)
-    bool kept_lost_ = false;              // a tetrahedron of keep_ was removed
+    ProtectedInserter::Scratch& s_;
+    std::size_t count_ = 0;  // members in the cavity now
+    bool sorted_ = true;     // s_.members lists exactly the members, by id
+    bool kept_lost_ = false;  // a tetrahedron marked kKeep was removed
     std::size_t removed_ = 0, added_ = 0;
 };
 
@@ -113,6 +149,26 @@ bool Cavity::check_start(std::string& why) const {
         }
     }
     return true;
+}
+
+// t (not a member, never rejected) joins the cavity.
+void Cavity::add(TetId t) {
+    s_.tet_marks.set(t, kIn);
+    s_.members.push_back(t);
+    ++count_;
+    sorted_ = false;
+}
+
+// Drops the removed tetrahedra from the list and sorts it: the order in
+// which the correction sweeps the boundary and the star is listed.
+const std::vector<TetId>& Cavity::sorted_members() {
+    if (!sorted_) {
+        std::vector<TetId>& list = s_.members;
+        list.erase(std::remove_if(list.begin(), list.end(), [this](TetId t) { return !in(t); }), list.end());
+        std::sort(list.begin(), list.end());
+        sorted_ = true;
+    }
+    return s_.members;
 }
 
 // A constraint face, or one the caller forbids (asked from both sides).
@@ -164,18 +220,20 @@ int Cavity::face_sign(TetId t, int f) const {
 
 // Bowyer-Watson growth from start, never across a protected face.
 void Cavity::grow() {
-    std::unordered_set<TetId> seen{start_};
-    std::vector<TetId> stack{start_};
-    in_.insert(start_);
+    std::vector<TetId>& stack = s_.stack;
+    stack.assign(1, start_);
+    s_.tet_marks.set(start_, kSeen);
+    add(start_);
     while (!stack.empty()) {
         const TetId t = stack.back();
         stack.pop_back();
         for (int f = 0; f < 4; ++f) {
             const TetId n = across(t, f);
             // can_join only gets stricter as the cavity grows: one test each.
-            if (is_protected(t, f) || !seen.insert(n).second) continue;
+            if (is_protected(t, f) || s_.tet_marks.has(n, kSeen)) continue;
+            s_.tet_marks.set(n, kSeen);
             if (in_conflict(n) && can_join(n)) {
-                in_.insert(n);
+                add(n);
                 stack.push_back(n);
             }
         }
@@ -184,16 +242,17 @@ void Cavity::grow() {
 
 bool Cavity::seed(const std::vector<TetId>& tets, std::string& why) {
     for (TetId t : tets) {
-        if (t >= m_.slot_count() || m_.is_free(t) || !in_.insert(t).second) {
+        if (t >= m_.slot_count() || m_.is_free(t) || in(t)) {
             why = "initial cavity: a tetrahedron is not live or is listed twice";
             return false;
         }
+        add(t);
     }
     if (!in(start_)) {
         why = "initial cavity does not contain start";
         return false;
     }
-    for (TetId t : in_)
+    for (TetId t : s_.members)
         for (int f = 0; f < 4; ++f)
             if (in(across(t, f)) && is_protected(t, f)) {
                 why = "initial cavity contains a protected face";
@@ -202,18 +261,25 @@ bool Cavity::seed(const std::vector<TetId>& tets, std::string& why) {
     return true;
 }
 
-std::vector<Cavity::Face> Cavity::boundary() const {
-    std::vector<Face> out;
-    for (TetId t : in_)
+// The faces of the members whose other side is not a member, by member id
+// then face.
+const std::vector<CavityFace>& Cavity::boundary() {
+    std::vector<CavityFace>& out = s_.faces;
+    out.clear();
+    for (TetId t : sorted_members())
         for (int f = 0; f < 4; ++f)
             if (!in(across(t, f))) out.push_back({t, f});
     return out;
 }
 
+// t leaves the cavity for good (its id stays in s_.members until the next
+// sorted_members()).
 void Cavity::remove(TetId t) {
-    if (keep_.count(t)) kept_lost_ = true;
-    in_.erase(t);
-    rejected_.insert(t);
+    if (s_.tet_marks.has(t, kKeep)) kept_lost_ = true;
+    s_.tet_marks.clear(t, kIn);
+    s_.tet_marks.set(t, kRejected);
+    --count_;
+    sorted_ = false;
     ++removed_;
 }
 
@@ -225,7 +291,7 @@ void Cavity::remove(TetId t) {
 // tetrahedron).
 Pass Cavity::correction_pass() {
     bool changed = false;
-    for (const Face& b : boundary()) {
+    for (const CavityFace& b : boundary()) {
         const TetId n = across(b.t, b.f);
         if (!in(b.t) || in(n)) continue;  // changed earlier in this sweep
         const int s = face_sign(b.t, b.f);
@@ -234,7 +300,7 @@ Pass Cavity::correction_pass() {
         const bool flat = s == 0 || nearly_flat(b.t, b.f);
         if (s > 0 && !flat) continue;
         if (flat && can_take_in(b.t, b.f, n)) {
-            in_.insert(n);
+            add(n);
             ++added_;
             changed = true;
             continue;
@@ -242,12 +308,12 @@ Pass Cavity::correction_pass() {
         if (s > 0) continue;
         changed = true;
         if (b.t == start_) return Pass::kStartLost;
-        if (keep_.count(b.t) && can_take_in(b.t, b.f, n)) {
+        if (s_.tet_marks.has(b.t, kKeep) && can_take_in(b.t, b.f, n)) {
             // p is behind a face of a tetrahedron that must stay (only
             // rounding puts it there: the seed is the crossing p splits):
             // take in the one beyond instead. (If it cannot join, remove()
             // records the loss and correct() gives up.)
-            in_.insert(n);
+            add(n);
             ++added_;
             continue;
         }
@@ -257,7 +323,7 @@ Pass Cavity::correction_pass() {
 }
 
 bool Cavity::can_take_in(TetId t, int f, TetId n) const {
-    return !is_protected(t, f) && rejected_.count(n) == 0 && can_join(n);
+    return !is_protected(t, f) && !s_.tet_marks.has(n, kRejected) && can_join(n);
 }
 
 // A computed point (an intersection point, rounded) that should lie on the
@@ -275,19 +341,27 @@ bool Cavity::nearly_flat(TetId t, int f) const {
 // Keeps the face-connected component of start (through unprotected faces,
 // the only ones a cavity contains); true when something was dropped.
 bool Cavity::keep_start_component() {
-    std::unordered_set<TetId> reached{start_};
-    std::vector<TetId> stack{start_};
+    mesh::SlotMarks& reached = s_.reached;
+    constexpr std::uint8_t kReached = 1;
+    reached.new_round(m_.slot_count());
+    reached.set(start_, kReached);
+    std::size_t count = 1;
+    std::vector<TetId>& stack = s_.stack;
+    stack.assign(1, start_);
     while (!stack.empty()) {
         const TetId t = stack.back();
         stack.pop_back();
         for (int f = 0; f < 4; ++f) {
             const TetId n = across(t, f);
-            if (in(n) && reached.insert(n).second) stack.push_back(n);
+            if (!in(n) || reached.has(n, kReached)) continue;
+            reached.set(n, kReached);
+            ++count;
+            stack.push_back(n);
         }
     }
-    if (reached.size() == in_.size()) return false;
-    for (TetId t : tets())
-        if (reached.count(t) == 0) remove(t);
+    if (count == count_) return false;
+    for (TetId t : s_.members)  // remove() leaves the list as it is
+        if (in(t) && !reached.has(t, kReached)) remove(t);
     return true;
 }
 
@@ -295,18 +369,27 @@ bool Cavity::keep_start_component() {
 // drop its cavity tetrahedra other than start (start's faces through it
 // then become boundary faces). True when something was dropped.
 bool Cavity::drop_interior_vertices() {
-    std::unordered_set<VertexId> on_boundary;
-    for (const Face& b : boundary())
-        for (int i = 0; i < 3; ++i) on_boundary.insert(m_.vertex(b.t, kFaceVertices[b.f][i]));
-    std::unordered_set<VertexId> lost;
-    for (TetId t : in_)
+    mesh::SlotMarks& marks = s_.vertex_marks;
+    constexpr std::uint8_t kOnBoundary = 1u << 0;
+    constexpr std::uint8_t kLost = 1u << 1;
+    marks.new_round(m_.vertex_count() + 1);  // + 1: the infinite vertex (vertex_slot)
+    for (const CavityFace& b : boundary())
+        for (int i = 0; i < 3; ++i) marks.set(vertex_slot(m_.vertex(b.t, kFaceVertices[b.f][i])), kOnBoundary);
+    bool any_lost = false;
+    for (TetId t : s_.members) {  // exactly the members: boundary() sorted them
+        for (int i = 0; i < 4; ++i) {
+            const std::size_t v = vertex_slot(m_.vertex(t, i));
+            if (!marks.has(v, kOnBoundary)) {
+                marks.set(v, kLost);
+                any_lost = true;
+            }
+        }
+    }
+    if (!any_lost) return false;
+    for (TetId t : s_.members) {  // remove() leaves the list as it is
+        if (t == start_ || !in(t)) continue;
         for (int i = 0; i < 4; ++i)
-            if (on_boundary.count(m_.vertex(t, i)) == 0) lost.insert(m_.vertex(t, i));
-    if (lost.empty()) return false;
-    for (TetId t : tets()) {
-        if (t == start_) continue;
-        for (int i = 0; i < 4; ++i)
-            if (lost.count(m_.vertex(t, i)) != 0) {
+            if (marks.has(vertex_slot(m_.vertex(t, i)), kLost)) {
                 remove(t);
                 break;
             }
@@ -334,27 +417,23 @@ bool Cavity::correct(std::string& why) {
     }
 }
 
-// Each boundary face coned to p: the cavity tetrahedron with p in place of
-// the vertex opposite the face (same side, so the orientation is kept).
-std::vector<std::array<VertexId, 4>> Cavity::star() const {
-    std::vector<std::array<VertexId, 4>> fresh;
-    for (const Face& b : boundary()) {
-        const VertexId* v = m_.vertices(b.t);
-        std::array<VertexId, 4> s = {v[0], v[1], v[2], v[3]};
-        s[static_cast<std::size_t>(b.f)] = pid_;
-        fresh.push_back(s);
-    }
-    return fresh;
-}
+}  // namespace
 
-ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked,
-                          const std::vector<TetId>* seed, bool keep_seed) {
-    ProtectedInsertResult res;
+ProtectedInserter::ProtectedInserter() : scratch_(std::make_unique<Scratch>()) {}
+ProtectedInserter::~ProtectedInserter() = default;
+
+const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked,
+                                                    const std::vector<TetId>* seed, bool keep_seed) {
+    ProtectedInsertResult& res = scratch_->result;
+    res.ok = false;
+    res.why.clear();
+    res.created.clear();
+    res.initial_cavity = res.removed = res.added = 0;
     if (p >= m.vertex_count()) {
         res.why = "p is not a vertex of the mesh's coordinates";
         return res;
     }
-    Cavity c(m, p, start, blocked);
+    Cavity c(m, p, start, blocked, *scratch_);
     if (!c.check_start(res.why)) return res;
     if (seed == nullptr) c.grow();
     else if (!c.seed(*seed, res.why)) return res;
@@ -364,7 +443,11 @@ ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace
     res.removed = c.removed();
     res.added = c.added();
     if (!corrected) return res;
-    const mesh::ReplaceResult r = mesh::replace_tets(m, c.tets(), c.star(), &res.created);
+    // The star of p: each boundary face coned to p, i.e. its cavity
+    // tetrahedron with p in place of the vertex opposite the face (same
+    // side, so the orientation is kept), listed by tetrahedron (sorted
+    // ids) then face.
+    const mesh::ReplaceResult r = scratch_->star.replace(m, c.tets(), p, &res.created);
     if (r != mesh::ReplaceResult::kDone) {
         res.why = std::string("replace_tets refused the star: ") + mesh::to_string(r);
         res.created.clear();
@@ -374,16 +457,25 @@ ProtectedInsertResult run(TetMesh& m, VertexId p, TetId start, const BlockedFace
     return res;
 }
 
-}  // namespace
+const ProtectedInsertResult& ProtectedInserter::insert(TetMesh& m, VertexId p, TetId start,
+                                                       const BlockedFace& blocked) {
+    return run(m, p, start, blocked, nullptr, false);
+}
+
+const ProtectedInsertResult& ProtectedInserter::insert_in_cavity(TetMesh& m, VertexId p, TetId start,
+                                                                 const std::vector<TetId>& cavity,
+                                                                 const BlockedFace& blocked, bool keep_seed) {
+    return run(m, p, start, blocked, &cavity, keep_seed);
+}
 
 ProtectedInsertResult insert_protected(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked) {
-    return run(m, p, start, blocked, nullptr, false);
+    return ProtectedInserter().insert(m, p, start, blocked);
 }
 
 ProtectedInsertResult insert_protected_in_cavity(TetMesh& m, VertexId p, TetId start,
                                                  const std::vector<TetId>& cavity, const BlockedFace& blocked,
                                                  bool keep_seed) {
-    return run(m, p, start, blocked, &cavity, keep_seed);
+    return ProtectedInserter().insert_in_cavity(m, p, start, cavity, blocked, keep_seed);
 }
 
 }  // namespace cbr::recover

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,8 @@ struct ProtectedInsertResult {
 // test), grown from `start` without crossing a protected face, then
 // corrected (§5.1). On failure (p on a protected face, p equal to a vertex,
 // `start` not containing p, replace_tets refusing) the mesh is unchanged
-// bit for bit.
+// bit for bit. (One-off insertions: the marks it allocates take time in
+// proportion to the mesh; a loop of insertions holds a ProtectedInserter.)
 ProtectedInsertResult insert_protected(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                        const BlockedFace& blocked = {});
 
@@ -53,5 +55,33 @@ ProtectedInsertResult insert_protected(mesh::TetMesh& m, mesh::VertexId p, mesh:
 ProtectedInsertResult insert_protected_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                                  const std::vector<mesh::TetId>& cavity,
                                                  const BlockedFace& blocked = {}, bool keep_seed = false);
+
+// The same two insertions, for callers that insert many points: the
+// object keeps its scratch storage (per-slot marks, the cavity and star
+// lists) from one insertion to the next instead of allocating it per call;
+// the results are the same as the free functions'. The result returned
+// refers to the object's storage and is valid until its next insertion.
+class ProtectedInserter {
+public:
+    ProtectedInserter();
+    ~ProtectedInserter();
+    ProtectedInserter(const ProtectedInserter&) = delete;
+    ProtectedInserter& operator=(const ProtectedInserter&) = delete;
+
+    const ProtectedInsertResult& insert(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
+                                        const BlockedFace& blocked = {});
+    const ProtectedInsertResult& insert_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
+                                                  const std::vector<mesh::TetId>& cavity,
+                                                  const BlockedFace& blocked = {}, bool keep_seed = false);
+
+    struct Scratch;  // protected_insertion.cpp
+
+private:
+    const ProtectedInsertResult& run(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
+                                     const BlockedFace& blocked, const std::vector<mesh::TetId>* seed,
+                                     bool keep_seed);
+
+    std::unique_ptr<Scratch> scratch_;
+};
 
 }  // namespace cbr::recover

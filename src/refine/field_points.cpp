@@ -4,10 +4,10 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <unordered_set>
 #include <vector>
 
 #include "geom/predicates.hpp"
+#include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
 #include "refine/locate.hpp"
 #include "refine/tet_measures.hpp"
@@ -67,7 +67,7 @@ private:
         double star_quality = 2;  // when asked
         double nearest2 = std::numeric_limits<double>::infinity();  // squared distance to the nearest cavity vertex
     };
-    Probe probe(TetId start, const double* p, bool want_star = false) const;
+    Probe probe(TetId start, const double* p, bool want_star = false);
     bool try_centroid(TetId t);
     bool insert(const Point& p, TetId start);
     bool try_circumcentre(TetId t);
@@ -78,6 +78,13 @@ private:
     mesh::TetMesh& m_;
     RefineStats& stats_;
     std::deque<Entry> queue_;
+    recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
+    // probe()'s scratch: its cavity, and per slot whether a tetrahedron
+    // was tested (kTested) and is in the cavity (kInCavity).
+    static constexpr std::uint8_t kTested = 1u << 0;
+    static constexpr std::uint8_t kInCavity = 1u << 1;
+    std::vector<TetId> probe_cavity_;
+    mesh::SlotMarks probe_marks_;
 };
 
 // Also "met" when the circumradius is already below kMinQualityRadius times
@@ -106,20 +113,24 @@ bool Refiner::meets_quality(TetId t) const {
 // and, when asked, the smallest quality of the star (every boundary face
 // coned to p; -1 when p does not see a boundary face strictly, where the
 // §5.1 correction would change the cavity).
-Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) const {
+Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
     Probe out;
-    std::vector<TetId> cavity{start};
-    std::unordered_set<TetId> tested{start}, in{start};
+    std::vector<TetId>& cavity = probe_cavity_;
+    mesh::SlotMarks& marks = probe_marks_;
+    marks.new_round(m_.slot_count());
+    cavity.assign(1, start);
+    marks.set(start, kTested | kInCavity);
     for (std::size_t i = 0; i < cavity.size(); ++i) {
         const TetId t = cavity[i];
         for (int f = 0; f < 4; ++f) {
             if (m_.is_constrained(t, f)) continue;
             const TetId n = facet_tet(m_.neighbor(t, f));
-            if (m_.is_ghost(n) || !tested.insert(n).second) continue;
+            if (m_.is_ghost(n) || marks.has(n, kTested)) continue;
+            marks.set(n, kTested);
             const VertexId* w = m_.vertices(n);
             if (geom::insphere_sos(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), p) > 0) {
                 cavity.push_back(n);
-                in.insert(n);
+                marks.set(n, kInCavity);
             }
         }
     }
@@ -127,7 +138,7 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) cons
         const VertexId* v = m_.vertices(t);
         for (int f = 0; f < 4; ++f) {
             const bool constrained = m_.is_constrained(t, f);
-            if (!constrained && in.count(facet_tet(m_.neighbor(t, f))) != 0) continue;  // interior face
+            if (!constrained && marks.has(facet_tet(m_.neighbor(t, f)), kInCavity)) continue;  // interior face
             const int* k = kFaceVertices[f];
             const double* a = m_.point(v[k[0]]);
             const double* b = m_.point(v[k[1]]);
@@ -176,7 +187,7 @@ bool Refiner::insert(const Point& p, TetId start) {
     const std::int32_t region = c_.region(start);
     const double h = c_.size.for_new_point(m_, start, p.data());
     const VertexId id = m_.add_points(p.data(), 1);
-    const recover::ProtectedInsertResult res = recover::insert_protected(m_, id, start);
+    const recover::ProtectedInsertResult& res = inserter_.insert(m_, id, start);
     if (!res.ok) {
         m_.truncate_vertices(id);
         return false;

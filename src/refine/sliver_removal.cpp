@@ -51,6 +51,7 @@ private:
     std::vector<TetId> cavity_;
     std::vector<BoundaryFace> boundary_;
     std::vector<Point> candidates_;
+    recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
 };
 
 void SliverRemover::collect_boundary() {
@@ -167,8 +168,7 @@ bool SliverRemover::remove(TetId sliver) {
     if (start == mesh::kNoTet) return false;
     const double h = c_.size.for_new_point(m_, start, chosen->data());
     const VertexId id = m_.add_points(chosen->data(), 1);
-    const recover::ProtectedInsertResult r =
-        recover::insert_protected_in_cavity(m_, id, start, cavity_, {}, /*keep_seed=*/true);
+    const recover::ProtectedInsertResult& r = inserter_.insert_in_cavity(m_, id, start, cavity_, {}, /*keep_seed=*/true);
     // Every boundary face sees the point: the kernel's correction has
     // nothing to change, and the star is the one judged above.
     if (!r.ok || r.removed != 0 || r.added != 0) {

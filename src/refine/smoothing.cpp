@@ -25,7 +25,7 @@ public:
     bool smooth(VertexId v, TetId start);
 
 private:
-    double min_quality() const;
+    double min_quality(double floor) const;
     bool ball_valid(VertexId v) const;
 
     RefineContext& c_;
@@ -34,11 +34,15 @@ private:
     std::vector<VertexId> neighbours_;
 };
 
-double Smoother::min_quality() const {  // of the ball
+// The ball's minimum quality when it is above `floor`; otherwise some value
+// at most `floor` (the search stops at the first tetrahedron not above it:
+// a candidate that does not beat the best so far is not looked at further).
+double Smoother::min_quality(double floor) const {
     double q = 1;
     for (TetId t : ball_) {
         const VertexId* v = m_.vertices(t);
         q = std::min(q, radius_ratio(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])));
+        if (q <= floor) break;
     }
     return q;
 }
@@ -86,13 +90,17 @@ bool Smoother::smooth(VertexId v, TetId start) {
     }
     // The worst tetrahedron and the unit normal of its face opposite v,
     // pointing toward v (the face's vertices in kFaceVertices order).
-    TetId worst = ball_.front();
+    std::size_t worst_at = 0;
     double worst_q = 2;
-    for (TetId t : ball_) {
-        const VertexId* w = m_.vertices(t);
+    for (std::size_t j = 0; j < ball_.size(); ++j) {
+        const VertexId* w = m_.vertices(ball_[j]);
         const double q = radius_ratio(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
-        if (q < worst_q) worst_q = q, worst = t;
+        if (q < worst_q) worst_q = q, worst_at = j;
     }
+    // The worst tetrahedron first: the likeliest to stay below the best
+    // quality so far, which ends min_quality early.
+    std::swap(ball_[0], ball_[worst_at]);
+    const TetId worst = ball_[0];
     if (worst_q < kLiftBelow) {
         const int i = mesh::vertex_index(m_, worst, v);
         const int* k = mesh::kFaceVertices[i];
@@ -117,7 +125,7 @@ bool Smoother::smooth(VertexId v, TetId start) {
     for (const Point& p : candidates) {
         m_.set_point(v, p.data());
         if (!ball_valid(v)) continue;
-        const double q = min_quality();
+        const double q = min_quality(best_q);
         if (q > best_q) best_q = q, best = &p;
     }
     m_.set_point(v, best ? best->data() : here.data());
