@@ -1076,18 +1076,15 @@ TEST_CASE("protected insertion: the rounded crossing of a planar quad's diagonal
 // are reported without failing the run; drop the decorator once fixed.
 
 // Through the driver: flips run first and leave meshes that conforming
-// recovery or splitting may then refuse. Five of the 189 still are:
-// without far points masks 59, 63; with far points at 25, masks 27, 57,
-// 62 ("the sub-faces of a face do not form a disk", or "cavity
+// recovery or splitting may then refuse. Three of the 189 still are: with
+// far points at 25, masks 27, 57, 62 ("the sub-faces of a face do not form a disk", or "cavity
 // correction would remove a tetrahedron of the crossing the point
 // splits": the rounded crossing point lands behind a constraint face of
 // the edge's shell).
 namespace {
 
 bool known_pierced_failure(int mask, double far) {
-    if (far == 0) return mask == 59 || mask == 63;
-    if (far == 25) return mask == 27 || mask == 57 || mask == 62;
-    return false;
+    return far == 25 && (mask == 27 || mask == 57 || mask == 62);
 }
 
 void recover_pierced(int mask, double far) {

@@ -9,6 +9,7 @@
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/flips.hpp"
 #include "recover/protected_insertion.hpp"
 #include "recover/segment_walk.hpp"
 
@@ -150,7 +151,7 @@ bool ConformingRecovery::recover_face(std::size_t face) {
     const Triangle& t = points_.faces().triangle(face);
     for (int k = 0; k < 3; ++k)
         if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
-    return recover_interior(face) && disk_is_complete(face);
+    return recover_interior(face) && remove_flat_tets(face) && disk_is_complete(face);
 }
 
 // §5.2 for a missing edge ab: walk from a towards b; where the segment
@@ -163,6 +164,7 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
     VertexId q = a;
     for (std::size_t step = 0; step < kMaxInsertionsPerConstraint; ++step) {
         if (edge_exists(q, b)) {
+            links_.insert(link_key(q, b));
             chain.push_back(b);
             points_.set_chain(a, b, std::move(chain));
             return true;
@@ -194,6 +196,7 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
         if (p == kGhostVertex) return false;
         points_.add_edge_point(p, a, b);
         if (!edge_exists(q, p)) return fail("an added point is not joined to the chain it extends");
+        links_.insert(link_key(q, p));
         chain.push_back(p);
         q = p;
     }
@@ -271,6 +274,93 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
                 }
     }
     return true;
+}
+
+// §5.2 wants each face a disk of sub-faces. A tetrahedron whose four
+// vertices are points of the face (rounded points on its edges, a thin
+// face) is flat, and its upper and lower faces would both be sub-faces.
+// Each is removed with an edge between two of its vertices that the face
+// does not need (Definition 5.8, edge removal).
+bool ConformingRecovery::remove_flat_tets(std::size_t face) {
+    for (std::size_t round = 0; round < kMaxInsertionsPerConstraint; ++round) {
+        const TetId t = find_flat_tet(face);
+        if (t == kNoTet) return true;
+        if (!remove_flat_tet(face, t)) return fail("a flat tetrahedron in a face could not be removed");
+    }
+    return fail("too many flat tetrahedra in one face");
+}
+
+// A live tetrahedron whose four vertices are points of the face, found in
+// the balls of the face's points (reached from its chains), or kNoTet.
+TetId ConformingRecovery::find_flat_tet(std::size_t face) {
+    const Triangle& tri = points_.faces().triangle(face);
+    std::vector<VertexId> work;
+    for (int k = 0; k < 3; ++k)
+        for (VertexId v : points_.chain(tri[k], tri[(k + 1) % 3])) work.push_back(v);
+    std::unordered_set<VertexId> seen;
+    std::vector<TetId> ball;
+    while (!work.empty()) {
+        const VertexId v = work.back();
+        work.pop_back();
+        if (!seen.insert(v).second || !mesh::ball(m_, v, incident_[v], ball)) continue;
+        for (TetId t : ball) {
+            if (m_.is_ghost(t)) continue;
+            if (is_flat(t, face)) return t;
+            for (int i = 0; i < 4; ++i)
+                if (points_.belongs_to(m_.vertex(t, i), face)) work.push_back(m_.vertex(t, i));
+        }
+    }
+    return kNoTet;
+}
+
+// The four vertices of finite tetrahedron t are points of the face.
+bool ConformingRecovery::is_flat(TetId t, std::size_t face) const {
+    for (int i = 0; i < 4; ++i)
+        if (!points_.belongs_to(m_.vertex(t, i), face)) return false;
+    return true;
+}
+
+// Removes flat tetrahedron t of the face by the removal of an edge ab of
+// it that is no chain link, such that its two faces without ab, (s, r, a)
+// and (s, r, b), lie on either side of sr within the face (they stay as
+// sub-faces, side by side), and whose shell holds no sub-face of another
+// input triangle (nothing else of the surface changes).
+bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
+    const Triangle& tri = points_.faces().triangle(face);
+    // A point off the plane of the face: the side of line sr within the
+    // face is the side of plane (s, r, apex), exactly.
+    const double* A = m_.point(tri[0]);
+    const double* B = m_.point(tri[1]);
+    const double* C = m_.point(tri[2]);
+    const double u1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, u2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+    const double n[3] = {u1[1] * u2[2] - u1[2] * u2[1], u1[2] * u2[0] - u1[0] * u2[2], u1[0] * u2[1] - u1[1] * u2[0]};
+    double apex[3];
+    for (int k = 0; k < 3; ++k) apex[k] = (A[k] + B[k] + C[k]) / 3 + n[k];
+    const std::array<VertexId, 4> v{m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3)};
+    const mesh::EdgeProtect is_link = [this](VertexId a, VertexId b) { return links_.count(link_key(a, b)) != 0; };
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+            const VertexId a = v[i], b = v[j];
+            if (is_link(a, b)) continue;
+            VertexId s = kGhostVertex, r = kGhostVertex;
+            for (int k = 0; k < 4; ++k)
+                if (k != i && k != j) (s == kGhostVertex ? s : r) = v[k];
+            const int side_a = geom::orient3d(m_.point(s), m_.point(r), apex, m_.point(a));
+            const int side_b = geom::orient3d(m_.point(s), m_.point(r), apex, m_.point(b));
+            if (side_a == 0 || side_a != -side_b) continue;
+            mesh::Shell shell;
+            if (!mesh::shell(m_, a, b, t, shell)) continue;
+            bool other_subface = false;
+            for (VertexId x : shell.ring)
+                other_subface = other_subface ||
+                                (x != kGhostVertex && !points_.belongs_to(x, face) && points_.is_subface(a, b, x));
+            if (other_subface) continue;
+            std::vector<TetId> created;
+            if (mesh::remove_edge(m_, t, a, b, is_link, &created) != mesh::FlipResult::kDone) continue;
+            note_created(created);
+            return true;
+        }
+    return false;
 }
 
 // The face is a union of sub-faces: the mesh faces whose vertices all

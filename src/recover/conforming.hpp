@@ -12,10 +12,18 @@
 // recovered part of any constraint (sub-edge, sub-face) is lost and the
 // process ends after as many insertions as there were crossings. The
 // cavity correction never crosses a constraint face or a sub-face.
+//
+// Rounded points on the edges of a thin face can make a flat tetrahedron
+// whose four vertices are all points of that face; both its upper and its
+// lower face then count as sub-faces, and the face is no disk. Such
+// tetrahedra are removed by edge removal before the disk check.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -38,7 +46,15 @@ public:
 private:
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
     bool recover_interior(std::size_t face);
+    bool remove_flat_tets(std::size_t face);
+    mesh::TetId find_flat_tet(std::size_t face);
+    bool is_flat(mesh::TetId t, std::size_t face) const;
+    bool remove_flat_tet(std::size_t face, mesh::TetId t);
     bool disk_is_complete(std::size_t face);
+    static std::uint64_t link_key(mesh::VertexId a, mesh::VertexId b) {
+        if (a > b) std::swap(a, b);
+        return (std::uint64_t{a} << 32) | b;
+    }
     // Inserts a point at xyz with `cavity` as initial cavity (with
     // `keep_cavity`, the correction keeps its finite tetrahedra); returns
     // its id or kGhostVertex (why_ set).
@@ -55,6 +71,7 @@ private:
     std::vector<mesh::TetId> incident_;
     std::vector<mesh::TetId> scratch_;
     ProtectedInserter inserter_;  // keeps its scratch storage across insertions
+    std::unordered_set<std::uint64_t> links_;  // every chain link made so far (never removed)
     std::string why_;
 };
 
