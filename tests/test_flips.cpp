@@ -466,6 +466,117 @@ TEST_CASE("ConeReplacer agrees with replace_tets on cones over random regions") 
     CHECK((Snapshot(m) == before));
 }
 
+namespace {
+
+// A random triangulation of the ring polygon r_i .. r_j (closed by the
+// chord ij), each triangle in ring order, randomly rotated.
+void random_ring_triangulation(int i, int j, Rng& rng, std::vector<RingTriangle>& out) {
+    if (j - i < 2) return;
+    const int k = i + 1 + static_cast<int>(rng() % static_cast<unsigned>(j - i - 1));
+    RingTriangle tri = {i, k, j};
+    std::rotate(tri.begin(), tri.begin() + static_cast<std::ptrdiff_t>(rng() % 3), tri.end());
+    out.push_back(tri);
+    random_ring_triangulation(i, k, rng, out);
+    random_ring_triangulation(k, j, rng, out);
+}
+
+// The cone list replace_tets is given for a shell transformation.
+std::vector<Tet> ring_cones(VertexId u, VertexId v, const Shell& s, const std::vector<RingTriangle>& triangles) {
+    std::vector<Tet> fresh;
+    for (const RingTriangle& t : triangles) {
+        const VertexId a = s.ring[static_cast<std::size_t>(t[0])], b = s.ring[static_cast<std::size_t>(t[1])],
+                       c = s.ring[static_cast<std::size_t>(t[2])];
+        fresh.push_back({a, b, c, v});
+        fresh.push_back({a, c, b, u});
+    }
+    return fresh;
+}
+
+// ShellReplacer against replace_tets on random shells of `base` (edges
+// with a ghost endpoint or ghosts in the ring included): the best ring
+// triangulation (also with the checks it vouches for skipped), random
+// triangulations, and broken ones (a triangle reversed or repeated). Same
+// verdict, same mesh slot for slot, same created list.
+std::map<ReplaceResult, int> compare_shell_replacements(const TetMesh& base, int trials, std::uint64_t seed) {
+    Rng rng(seed);
+    ShellReplacer shells;  // one replacer for every trial: its scratch is reused
+    std::map<ReplaceResult, int> verdicts;
+    for (int trial = 0; trial < trials; ++trial) {
+        const TetId t = random_live(base, rng);
+        const int i = static_cast<int>(rng() % 4), j = (i + 1 + static_cast<int>(rng() % 3)) % 4;
+        const VertexId u = base.vertex(t, i), v = base.vertex(t, j);
+        Shell s;
+        REQUIRE(shell(base, u, v, t, s));
+        if (s.size() > 12) continue;
+        const int n = static_cast<int>(s.size());
+        std::vector<RingTriangle> triangles;
+        const int mode = static_cast<int>(rng() % 3);
+        if (mode == 0) {
+            if (!best_ring_triangulation(base, u, v, s, triangles)) continue;
+        } else {
+            random_ring_triangulation(0, n - 1, rng, triangles);
+            std::shuffle(triangles.begin(), triangles.end(), rng);
+            if (mode == 2) {
+                RingTriangle& bad = triangles[rng() % triangles.size()];
+                if (rng() % 2 || triangles.size() == 1) std::swap(bad[0], bad[1]);
+                else bad = triangles[(&bad - triangles.data() + 1) % static_cast<std::ptrdiff_t>(triangles.size())];
+            }
+        }
+        TetMesh expected_mesh = base;
+        std::vector<TetId> expected_created, created;
+        const ReplaceResult expected =
+            replace_tets(expected_mesh, s.tets, ring_cones(u, v, s, triangles), &expected_created);
+        const std::vector<ShellGeometry> ways =
+            mode == 0 ? std::vector<ShellGeometry>{ShellGeometry::kUnchecked, ShellGeometry::kScoredRing}
+                      : std::vector<ShellGeometry>{ShellGeometry::kUnchecked};
+        for (ShellGeometry way : ways) {
+            CAPTURE(mode);
+            CAPTURE(static_cast<int>(way));
+            TetMesh m = base;
+            const ReplaceResult got = shells.replace(m, u, v, s, triangles, way, &created);
+            REQUIRE(got == expected);
+            CHECK((Snapshot(m) == Snapshot(expected_mesh)));
+            if (got == ReplaceResult::kDone) {
+                CHECK(created == expected_created);
+                require_valid(m);
+            }
+        }
+        if (mode == 2) CHECK(expected == ReplaceResult::kNotTiling);
+        ++verdicts[expected];
+    }
+    return verdicts;
+}
+
+}  // namespace
+
+// ShellReplacer is replace_tets specialised to the shell transformation: on
+// random points (few coplanar configurations) and on a grid (flat hull
+// faces, coplanar rings: the cases of CAD surfaces), with random
+// constraint faces, it gives the same verdicts and meshes.
+TEST_CASE("ShellReplacer agrees with replace_tets on random shells") {
+    TetMesh scattered = delaunay_mesh(cbr::test::random_points(80, 31));
+    std::vector<double> grid;
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y)
+            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
+    TetMesh flat = delaunay_mesh(grid);
+    for (TetMesh* m : {&scattered, &flat}) {
+        Rng rng(37);
+        for (TetId t = 0; t < m->slot_count(); ++t)
+            for (int f = 0; f < 4; ++f)
+                if (!m->is_free(t) && rng() % 60 == 0) mark_face(*m, t, f);
+    }
+    std::map<ReplaceResult, int> verdicts = compare_shell_replacements(scattered, 3000, 41);
+    for (const auto& [r, count] : compare_shell_replacements(flat, 3000, 43)) verdicts[r] += count;
+    for (const auto& [r, count] : verdicts) MESSAGE(std::string(to_string(r)) << ": " << count);
+    // The trials reach every verdict a shell transformation can get.
+    CHECK(verdicts[ReplaceResult::kDone] > 100);
+    CHECK(verdicts[ReplaceResult::kNotTiling] > 100);
+    CHECK(verdicts[ReplaceResult::kRemovesConstraint] > 0);
+    CHECK(verdicts[ReplaceResult::kInverted] > 100);
+    CHECK(verdicts[ReplaceResult::kNotConvex] > 0);
+}
+
 TEST_CASE("flips that would dent the hull are refused") {
     TetMesh m = delaunay_mesh(cbr::test::random_points(100, 13));
     const Snapshot before(m);

@@ -23,6 +23,7 @@
 #include <random>
 #include <vector>
 
+#include "geom/plane_side.hpp"
 #include "geom/predicates.hpp"
 
 namespace {
@@ -247,6 +248,8 @@ void check_orient3d(const Point& a, const Point& b, const Point& c, const Point&
     CHECK(orient3d(a, b, c, d) == ref);
     CHECK(cbr::geom::detail::orient3d_exact(a.data(), b.data(), c.data(), d.data(), nullptr) == ref);
     CHECK(cbr::geom::detail::orient3d_exact_raw(a.data(), b.data(), c.data(), d.data()) == ref);
+    cbr::geom::PlaneSide side(a.data(), b.data(), c.data());
+    CHECK(side(d.data()) == ref);
 }
 
 void check_insphere(const Point& a, const Point& b, const Point& c, const Point& d,
@@ -348,6 +351,34 @@ TEST_CASE("orient3d: exactly coplanar grids and planes") {
         CHECK(orient3d(*t[0], *t[1], *t[2], *t[3]) == 0);
         check_orient3d(*t[0], *t[1], *t[2], nudged(*t[3], rng.integer(0, 2), rng.integer(-2, 2)));
     });
+}
+
+// PlaneSide keeps the plane's exact normal from one point to the next:
+// many points against one plane, exactly on it or a few ulps off, with
+// representable differences or not (non-dyadic grid, mixed magnitudes).
+TEST_CASE("orient3d: PlaneSide against one plane for many points") {
+    Rng rng(6);
+    const auto g = grid(4, 1.0, 0.0);
+    const auto g2 = grid(4, 0.1, -0.15);
+    const auto values = extreme_values();
+    int zeros = 0;
+    for (int plane = 0; plane < 300; ++plane) {
+        const std::vector<Point>& pts = plane % 2 ? g : g2;
+        const int last = static_cast<int>(pts.size()) - 1;
+        const auto any = [&] { return pts[static_cast<std::size_t>(rng.integer(0, last))]; };
+        const Point a = any(), b = any();
+        const Point c = plane % 5 == 0 ? extreme_point(rng, values) : any();
+        cbr::geom::PlaneSide side(a.data(), b.data(), c.data());
+        for (int n = 0; n < 40; ++n) {
+            Point x = any();
+            if (n % 3 == 0) x = nudged(x, rng.integer(0, 2), rng.integer(-2, 2));
+            if (n % 7 == 0) x = extreme_point(rng, values);
+            const int ref = ref_orient3d(a, b, c, x);
+            CHECK(side(x.data()) == ref);
+            zeros += ref == 0;
+        }
+    }
+    CHECK(zeros > 1000);  // mostly points on the plane: the exact stage
 }
 
 TEST_CASE("orient3d: mixed magnitudes up to 1e+-40") {

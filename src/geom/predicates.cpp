@@ -24,6 +24,7 @@
 #include "geom/predicates.hpp"
 
 #include "geom/expansion.hpp"
+#include "geom/plane_side.hpp"
 
 namespace cbr::geom {
 namespace {
@@ -428,6 +429,27 @@ int lexicographic_compare(const double* p, const double* q) {
         if (p[k] > q[k]) return 1;
     }
     return 0;
+}
+
+// w . (u x v) with u = b - a, v = c - a, w = x - a: det[u; v; w], the
+// determinant orient3d_exact expands along z (exact when the differences
+// are).
+int PlaneSide::exact_sign(const double* x) {
+    if (state_ == Normal::kNotYet) {
+        double u[3], v[3];
+        if (exact_differences(b_, a_, u) & exact_differences(c_, a_, v)) {
+            normal_[0] = xp::minor2(u[1], v[2], v[1], u[2]);  // uy vz - vy uz
+            normal_[1] = xp::minor2(u[2], v[0], v[2], u[0]);  // uz vx - vz ux
+            normal_[2] = xp::minor2(u[0], v[1], v[0], u[1]);  // ux vy - vx uy
+            state_ = Normal::kExact;
+        } else {
+            state_ = Normal::kInexact;
+        }
+    }
+    double w[3];
+    if (state_ == Normal::kInexact || !exact_differences(x, a_, w))
+        return detail::orient3d_exact(a_, b_, c_, x, nullptr);
+    return ((w[0] * normal_[0] + w[1] * normal_[1]) + w[2] * normal_[2]).sign();
 }
 
 }  // namespace cbr::geom

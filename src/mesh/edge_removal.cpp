@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geom/plane_side.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/flips.hpp"
 
@@ -15,7 +16,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Scores of the tetrahedra a triangulation of the shell's ring would make.
 class RingScorer {
 public:
-    RingScorer(const TetMesh& m, VertexId u, VertexId v, const Shell& s) : m_(m), u_(u), v_(v), ring_(s.ring) {
+    // `finite`: storage for the shell's finite vertices (reused).
+    RingScorer(const TetMesh& m, VertexId u, VertexId v, const Shell& s, std::vector<VertexId>& finite)
+        : m_(m), u_(u), v_(v), ring_(s.ring), finite_(finite) {
+        finite_.clear();
         for (VertexId x : ring_)
             if (x != kGhostVertex) finite_.push_back(x);
         for (VertexId x : {u, v})
@@ -23,12 +27,13 @@ public:
     }
 
     // Ring triangle (i, k, j) in ring order: the worse of (ri, rk, rj, v)
-    // and (ri, rj, rk, u).
-    double triangle(int i, int k, int j) const {
+    // and (ri, rj, rk, u); or only the first when that is <= `floor` (the
+    // caller then has no use for the triangle: it cannot beat its best).
+    double triangle(int i, int k, int j, double floor) const {
         const VertexId a = ring_[static_cast<std::size_t>(i)], b = ring_[static_cast<std::size_t>(k)],
                        c = ring_[static_cast<std::size_t>(j)];
         const double first = tet(a, b, c, v_);
-        return first == -kInf ? first : std::min(first, tet(a, c, b, u_));
+        return first <= floor ? first : std::min(first, tet(a, c, b, u_));
     }
 
 private:
@@ -50,15 +55,20 @@ private:
             std::swap(f[g], f[3]);
             std::swap(f[(g + 1) % 3], f[(g + 2) % 3]);
         }
-        for (VertexId x : finite_)
-            if (geom::orient3d(m_.point(f[0]), m_.point(f[1]), m_.point(f[2]), m_.point(x)) > 0) return -kInf;
+        geom::PlaneSide side(m_.point(f[0]), m_.point(f[1]), m_.point(f[2]));  // orient3d, plane set up once
+        for (VertexId x : finite_) {
+            // A vertex of the face is on it (orient3d would need its exact
+            // stage to say so: the filter cannot decide a degenerate case).
+            if (x == f[0] || x == f[1] || x == f[2]) continue;
+            if (side(m_.point(x)) > 0) return -kInf;
+        }
         return kInf;
     }
 
     const TetMesh& m_;
     VertexId u_, v_;
     const std::vector<VertexId>& ring_;
-    std::vector<VertexId> finite_;
+    std::vector<VertexId>& finite_;
 };
 
 // best(i, j): the best worst-quality over triangulations of the sub-polygon
@@ -67,6 +77,8 @@ struct RingDp {
     std::size_t n = 0;
     std::vector<double> best;
     std::vector<int> split;
+    std::vector<VertexId> finite;             // RingScorer's storage
+    std::vector<std::pair<int, int>> todo;    // extract's storage
     // Reuses the tables' storage (the caller keeps one RingDp per thread).
     void reset(std::size_t size) {
         n = size;
@@ -77,6 +89,14 @@ struct RingDp {
     int& apex(int i, int j) { return split[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
 };
 
+// The calling thread's tables, kept from one search to the next. Not
+// inlined: a thread_local in a shared library costs a __tls_get_addr call
+// per use, and inlined into the search its uses were 2% of a recovery.
+[[gnu::noinline]] RingDp& thread_ring_dp() {
+    thread_local RingDp dp;
+    return dp;
+}
+
 void solve(RingDp& dp, const RingScorer& score) {
     const int n = static_cast<int>(dp.n);
     for (int len = 2; len < n; ++len) {
@@ -86,7 +106,7 @@ void solve(RingDp& dp, const RingScorer& score) {
             for (int k = i + 1; k < j; ++k) {
                 double q = std::min(dp.at(i, k), dp.at(k, j));
                 if (q <= best) continue;  // cannot beat the best so far
-                q = std::min(q, score.triangle(i, k, j));
+                q = std::min(q, score.triangle(i, k, j, best));
                 if (q > best) {
                     best = q;
                     dp.apex(i, j) = k;
@@ -97,9 +117,10 @@ void solve(RingDp& dp, const RingScorer& score) {
     }
 }
 
-std::vector<RingTriangle> extract(RingDp& dp) {
-    std::vector<RingTriangle> triangles;
-    std::vector<std::pair<int, int>> todo = {{0, static_cast<int>(dp.n) - 1}};
+void extract(RingDp& dp, std::vector<RingTriangle>& triangles) {
+    triangles.clear();
+    std::vector<std::pair<int, int>>& todo = dp.todo;
+    todo.assign(1, {0, static_cast<int>(dp.n) - 1});
     while (!todo.empty()) {
         const auto [i, j] = todo.back();
         todo.pop_back();
@@ -109,7 +130,6 @@ std::vector<RingTriangle> extract(RingDp& dp) {
         todo.push_back({i, k});
         todo.push_back({k, j});
     }
-    return triangles;
 }
 
 }  // namespace
@@ -137,16 +157,25 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
     return q > 0 ? q : std::numeric_limits<double>::min();
 }
 
-std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
-                                                  double* min_quality) {
-    if (shell.size() < 3) return {};
-    thread_local RingDp dp;
+bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                             std::vector<RingTriangle>& triangles, double* min_quality) {
+    triangles.clear();
+    if (shell.size() < 3) return false;
+    RingDp& dp = thread_ring_dp();
     dp.reset(shell.size());
-    solve(dp, RingScorer(m, u, v, shell));
+    solve(dp, RingScorer(m, u, v, shell, dp.finite));
     const double best = dp.at(0, static_cast<int>(shell.size()) - 1);
     if (min_quality) *min_quality = best;
-    if (best == -kInf) return {};
-    return extract(dp);
+    if (best == -kInf) return false;
+    extract(dp, triangles);
+    return true;
+}
+
+std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                                  double* min_quality) {
+    std::vector<RingTriangle> triangles;
+    best_ring_triangulation(m, u, v, shell, triangles, min_quality);
+    return triangles;
 }
 
 }  // namespace cbr::mesh

@@ -60,6 +60,22 @@ ReplaceResult replace_shell(TetMesh& m, VertexId u, VertexId v, const Shell& s,
     return replace_tets(m, s.tets, cone_triangles(u, v, s, triangles), created);
 }
 
+// Reused storage: flip recovery removes edges millions of times, and the
+// shell's vectors alone were a tenth of its instructions in allocation.
+// One thread_local object: each one costs a TLS look-up per call.
+struct FlipScratch {
+    Shell shell;
+    std::vector<RingTriangle> triangles;
+    // replace_tets for the flips' own ring triangulations of a current
+    // shell, by the shell's structure.
+    ShellReplacer replacer;
+};
+
+FlipScratch& flip_scratch() {
+    thread_local FlipScratch scratch;
+    return scratch;
+}
+
 // Index d in {0, 1} of the ring diagonal (r_d, r_d+2) coplanar with uv, or -1.
 int coplanar_diagonal(const TetMesh& m, VertexId u, VertexId v, const Shell& s) {
     if (u == kGhostVertex || v == kGhostVertex) return -1;
@@ -103,7 +119,7 @@ FlipResult flip32(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect
     Shell s;
     if (!shell_from(m, t, u, v, s) || s.size() != 3) return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
-    return checked(replace_shell(m, u, v, s, {{0, 1, 2}}, created));
+    return checked(flip_scratch().replacer.replace(m, u, v, s, {{0, 1, 2}}, ShellGeometry::kUnchecked, created));
 }
 
 FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect,
@@ -114,19 +130,18 @@ FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect
     if (d < 0) return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
     const std::vector<RingTriangle> triangles = {{d, d + 1, d + 2}, {d, d + 2, (d + 3) % 4}};
-    return checked(replace_shell(m, u, v, s, triangles, created));
+    return checked(flip_scratch().replacer.replace(m, u, v, s, triangles, ShellGeometry::kUnchecked, created));
 }
 
 FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect,
                        std::vector<TetId>* created) {
-    // Reused storage: flip recovery calls this millions of times, and the
-    // shell's vectors were a tenth of its instructions in allocation.
-    thread_local Shell s;
-    if (!shell_from(m, t, u, v, s) || s.size() < 3 || s.size() > kMaxRemovalShell) return FlipResult::kNotApplicable;
+    FlipScratch& scratch = flip_scratch();
+    const Shell& s = scratch.shell;
+    if (!shell_from(m, t, u, v, scratch.shell) || s.size() < 3 || s.size() > kMaxRemovalShell)
+        return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
-    const std::vector<RingTriangle> triangles = best_ring_triangulation(m, u, v, s);
-    if (triangles.empty()) return FlipResult::kNoValidTriangulation;
-    return checked(replace_shell(m, u, v, s, triangles, created));
+    if (!best_ring_triangulation(m, u, v, s, scratch.triangles)) return FlipResult::kNoValidTriangulation;
+    return checked(scratch.replacer.replace(m, u, v, s, scratch.triangles, ShellGeometry::kScoredRing, created));
 }
 
 FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shell,

@@ -1,8 +1,10 @@
 // Flips (§5.1, Definition 5.6: Swap23, Swap32, Swap44) and edge removal
 // (Definition 5.8, the shell transformation; Shewchuk's edge removal), all
-// through replace_tets: a flip is done only when every new tetrahedron is
-// positively oriented (exact), no constraint face is removed (replace_tets
-// refuses) and no protected edge disappears (the caller's callback).
+// through replace_tets (flip32, flip44 and remove_edge through its
+// specialisation to shells, ShellReplacer: same checks and result): a flip
+// is done only when every new tetrahedron is positively oriented (exact),
+// no constraint face is removed (replace_tets refuses) and no protected
+// edge disappears (the caller's callback).
 //
 // Ghosts: kGhostVertex is treated as any other apex or ring vertex; the
 // convexity rule of replace_tets accepts a flip touching the hull only when
@@ -78,10 +80,6 @@ inline constexpr std::size_t kMaxRemovalShell = 64;
 FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
                        std::vector<TetId>* created = nullptr);
 
-// A triangle of the ring polygon: three indices into Shell::ring in cyclic
-// ring order (each a rotation of i < j < k).
-using RingTriangle = std::array<int, 3>;
-
 // The shell transformation (Definition 5.8) with a given triangulation of
 // the ring: every triangle (ri, rj, rk) gives (ri, rj, rk, v) and (ri, rk,
 // rj, u). `shell` must be the current shell of uv (from shell()). Does not
@@ -97,6 +95,9 @@ FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shel
 // finite vertices on the inner side of its hull face.
 std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                                                   double* min_quality = nullptr);
+// The same into `triangles` (its storage reused); false when none is valid.
+bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                             std::vector<RingTriangle>& triangles, double* min_quality = nullptr);
 
 // Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
 // lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when

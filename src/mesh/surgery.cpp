@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "geom/plane_side.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/slot_marks.hpp"
 
@@ -76,8 +77,14 @@ bool is_old(const std::vector<TetId>& sorted, TetId t) {
     return std::binary_search(sorted.begin(), sorted.end(), t);
 }
 
-// Checks ids and moves kGhostVertex to position 3 by an even permutation
-// (two transpositions), which keeps the orientation.
+// Moves the ghost vertex at position `ghost` (0..2) to position 3 by an
+// even permutation (two transpositions), which keeps the orientation.
+void move_ghost_last(Tet& t, int ghost) {
+    std::swap(t[static_cast<std::size_t>(ghost)], t[3]);
+    std::swap(t[static_cast<std::size_t>((ghost + 1) % 3)], t[static_cast<std::size_t>((ghost + 2) % 3)]);
+}
+
+// Checks ids and moves kGhostVertex to position 3 (move_ghost_last).
 bool normalise_fresh(const TetMesh& m, const std::vector<Tet>& fresh, std::vector<Tet>& out) {
     if (fresh.empty()) return false;
     out = fresh;
@@ -93,10 +100,7 @@ bool normalise_fresh(const TetMesh& m, const std::vector<Tet>& fresh, std::vecto
             for (int j = 0; j < i; ++j)
                 if (t[j] == t[i]) return false;
         }
-        if (ghost >= 0 && ghost != 3) {
-            std::swap(t[ghost], t[3]);
-            std::swap(t[(ghost + 1) % 3], t[(ghost + 2) % 3]);
-        }
+        if (ghost >= 0 && ghost != 3) move_ghost_last(t, ghost);
     }
     return true;
 }
@@ -211,9 +215,23 @@ VertexId far_vertex(const TetMesh& m, const Plan& plan, std::size_t half) {
     return plan.outside[half] ? m.vertex(facet_tet(r), facet_face(r)) : plan.tets[facet_tet(r)][facet_face(r)];
 }
 
-// x is on the finite side of (or on) the hull face of ghost g.
+// x is on the finite side of (or on) the hull face of ghost g. A vertex of
+// the face is on it: answered without orient3d, whose filter cannot decide
+// a degenerate tetrahedron and would run the exact stage.
 bool inside_hull_face(const TetMesh& m, const Tet& g, VertexId x) {
+    if (x == g[0] || x == g[1] || x == g[2]) return true;
     return x != kGhostVertex && orient(m, g[0], g[1], g[2], x) <= 0;
+}
+
+// inside_hull_face for every finite vertex in `region`, the face's plane
+// set up once for the exact stage (PlaneSide).
+bool region_inside_hull_face(const TetMesh& m, const Tet& g, const std::vector<VertexId>& region) {
+    geom::PlaneSide side(m.point(g[0]), m.point(g[1]), m.point(g[2]));
+    for (VertexId x : region) {
+        if (x == g[0] || x == g[1] || x == g[2]) continue;  // on the face (see inside_hull_face)
+        if (side(m.point(x)) > 0) return false;
+    }
+    return true;
 }
 
 // The convexity rule for fresh ghosts (see surgery.hpp). Hull edges
@@ -234,8 +252,25 @@ bool hull_stays_convex(const TetMesh& m, const std::vector<TetId>& old, const Pl
             region = finite_vertices(m, old);
             region_known = true;
         }
-        for (VertexId x : region)
-            if (!inside_hull_face(m, g, x)) return false;
+        if (!region_inside_hull_face(m, g, region)) return false;
+    }
+    return true;
+}
+
+// The part of the convexity rule that a scored ring (ShellGeometry::
+// kScoredRing) does not imply: a fresh ghost's hull face borders a finite
+// tetrahedron, and the far vertex of each hull face next to it outside the
+// shell is on the inner side. The region's vertices were scored against
+// every fresh ghost, and so were the far vertices of fresh neighbours:
+// across a face through the ghost vertex, a fresh neighbour's far vertex is
+// a finite vertex of the region.
+bool hull_stays_convex_outside_region(const TetMesh& m, const Plan& plan) {
+    for (std::size_t j = 0; j < plan.tets.size(); ++j) {
+        const Tet& g = plan.tets[j];
+        if (g[3] != kGhostVertex) continue;
+        if (far_vertex(m, plan, 4 * j + 3) == kGhostVertex) return false;  // hull face between two ghosts
+        for (std::size_t f = 0; f < 3; ++f)
+            if (plan.outside[4 * j + f] && !inside_hull_face(m, g, far_vertex(m, plan, 4 * j + f))) return false;
     }
     return true;
 }
@@ -421,7 +456,135 @@ ReplaceResult link_faces_through_apex(Plan& plan, VertexId p, std::vector<EdgeSl
     return unpaired == 0 ? ReplaceResult::kDone : ReplaceResult::kNotTiling;
 }
 
+// --- the shell transformation (ShellReplacer) --------------------------------
+
+// An edge of the ring polygon (a side or a chord), keyed by its two ring
+// indices: how many triangles have used it so far, and for the first one,
+// its direction and the faces through it of its two cones.
+struct RingEdgeUse {
+    FacetRef above = 0;  // the face of the cone to v through the edge
+    FacetRef below = 0;  // the face of the cone to u through the edge
+    std::uint8_t uses = 0;
+    bool ascending = false;  // traversed from the smaller ring index to the larger
+};
+
+// Three distinct ring indices in range (a cone with distinct vertex ids).
+bool valid_indices(const RingTriangle& tri, int n) {
+    for (int i : tri)
+        if (i < 0 || i >= n) return false;
+    return tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0];
+}
+
+// Distinct indices in cyclic ring order.
+bool in_ring_order(const RingTriangle& tri) {
+    const int i = tri[0], j = tri[1], k = tri[2];
+    return (i < j && j < k) || (j < k && k < i) || (k < i && i < j);
+}
+
+// Position of x in t (x is one of its vertices).
+int position(const Tet& t, VertexId x) {
+    int i = 0;
+    while (i < 3 && t[static_cast<std::size_t>(i)] != x) ++i;
+    return i;
+}
+
+// t with a ghost vertex moved to position 3, as normalise_fresh does.
+Tet with_ghost_last(Tet t) {
+    for (int i = 0; i < 3; ++i)
+        if (t[static_cast<std::size_t>(i)] == kGhostVertex) move_ghost_last(t, i);
+    return t;
+}
+
+// The cones of the ring triangles in plan.tets (to v, then to u, per
+// triangle; ghosts normalised), links and marks cleared. False when there
+// is none or a triangle is not three distinct ring indices.
+bool cone_ring(VertexId u, VertexId v, const Shell& s, const std::vector<RingTriangle>& triangles, Plan& plan) {
+    const int n = static_cast<int>(s.size());
+    plan.tets.clear();
+    for (const RingTriangle& tri : triangles) {
+        if (!valid_indices(tri, n)) return false;
+        const VertexId a = s.ring[static_cast<std::size_t>(tri[0])], b = s.ring[static_cast<std::size_t>(tri[1])],
+                       c = s.ring[static_cast<std::size_t>(tri[2])];
+        plan.tets.push_back(with_ghost_last({a, b, c, v}));
+        plan.tets.push_back(with_ghost_last({a, c, b, u}));
+    }
+    plan.partner.assign(4 * plan.tets.size(), 0);
+    plan.outside.assign(4 * plan.tets.size(), 0);
+    plan.marks.assign(plan.tets.size(), 0);
+    return !plan.tets.empty();
+}
+
+// Links a ring side's two new faces to the old faces of shell tetrahedron
+// `t` opposite u and v, which they replace, with their constraint marks.
+void link_to_shell_side(const TetMesh& m, VertexId u, VertexId v, TetId t, FacetRef above, FacetRef below,
+                        Plan& plan) {
+    const int fu = vertex_index(m, t, u), fv = vertex_index(m, t, v);
+    set_partner(plan, above, m.neighbor(t, fu), true, m.is_constrained(t, fu));
+    set_partner(plan, below, m.neighbor(t, fv), true, m.is_constrained(t, fv));
+}
+
+// Links every face of the cones (cone_ring) and checks that the triangles
+// tile the ring polygon, which is what match_faces would find: each ring
+// side is used by one triangle, each chord by two, in opposite directions
+// (a triangle in ring order is positively oriented in the polygon, so
+// these make a triangulation). Returns kDone or kNotTiling.
+ReplaceResult link_ring_cones(const TetMesh& m, VertexId u, VertexId v, const Shell& s,
+                              const std::vector<RingTriangle>& triangles, Plan& plan,
+                              std::vector<RingEdgeUse>& edges) {
+    const int n = static_cast<int>(s.size());
+    if (triangles.size() + 2 != s.size()) return ReplaceResult::kNotTiling;
+    edges.assign(s.size() * s.size(), RingEdgeUse{});
+    std::size_t open_chords = 0;
+    for (std::size_t q = 0; q < triangles.size(); ++q) {
+        const RingTriangle& tri = triangles[q];
+        if (!in_ring_order(tri)) return ReplaceResult::kNotTiling;  // its cones face the wrong way
+        const TetId above = static_cast<TetId>(2 * q), below = above + 1;  // the cones to v and to u
+        const Tet& cone_v = plan.tets[above];
+        const Tet& cone_u = plan.tets[below];
+        // The triangle itself: the face the two cones share.
+        set_partner(plan, make_facet(above, position(cone_v, v)), make_facet(below, position(cone_u, u)), false, false);
+        set_partner(plan, make_facet(below, position(cone_u, u)), make_facet(above, position(cone_v, v)), false, false);
+        for (int e = 0; e < 3; ++e) {
+            const int x = tri[static_cast<std::size_t>(e)], y = tri[static_cast<std::size_t>((e + 1) % 3)];
+            const VertexId opposite = s.ring[static_cast<std::size_t>(tri[static_cast<std::size_t>((e + 2) % 3)])];
+            const FacetRef face_v = make_facet(above, position(cone_v, opposite));
+            const FacetRef face_u = make_facet(below, position(cone_u, opposite));
+            RingEdgeUse& use = edges[static_cast<std::size_t>(std::min(x, y) * n + std::max(x, y))];
+            if (y == (x + 1) % n) {  // a side, from shell tetrahedron x
+                if (use.uses++ != 0) return ReplaceResult::kNotTiling;
+                link_to_shell_side(m, u, v, s.tets[static_cast<std::size_t>(x)], face_v, face_u, plan);
+            } else if (use.uses == 0) {  // a chord, first seen
+                use = {face_v, face_u, 1, x < y};
+                ++open_chords;
+            } else {  // a chord, second seen: the two triangles share its faces
+                if (use.uses++ != 1 || use.ascending == (x < y)) return ReplaceResult::kNotTiling;
+                set_partner(plan, face_v, use.above, false, false);
+                set_partner(plan, use.above, face_v, false, false);
+                set_partner(plan, face_u, use.below, false, false);
+                set_partner(plan, use.below, face_u, false, false);
+                --open_chords;
+            }
+        }
+    }
+    return open_chords == 0 ? ReplaceResult::kDone : ReplaceResult::kNotTiling;
+}
+
+// A face between two tetrahedra of the shell (through u and v) is
+// constrained: no cone has it.
+bool shell_has_interior_constraint(const TetMesh& m, VertexId u, VertexId v, const Shell& s) {
+    for (TetId t : s.tets)
+        for (int f = 0; f < 4; ++f)
+            if (m.vertex(t, f) != u && m.vertex(t, f) != v && m.is_constrained(t, f)) return true;
+    return false;
+}
+
 }  // namespace
+
+struct ShellReplacer::Scratch {
+    Plan plan;
+    std::vector<RingEdgeUse> edges;  // n * n for a ring of n: see RingEdgeUse
+    std::vector<TetId> slots;
+};
 
 const char* to_string(ReplaceResult r) {
     switch (r) {
@@ -471,6 +634,33 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
     const ReplaceResult r = check_geometry(m, old, s.plan);
     if (r != ReplaceResult::kDone) return r;
     apply_plan(m, old, s.plan, s.slots, created);
+    return ReplaceResult::kDone;
+}
+
+ShellReplacer::ShellReplacer() : scratch_(std::make_unique<Scratch>()) {}
+ShellReplacer::~ShellReplacer() = default;
+
+// The checks of replace_tets in its order. In a valid mesh the shell's
+// tetrahedra are live and distinct, their boundary faces are the 2n faces
+// opposite u and v (a triangle bounds two tetrahedra, and the one outside
+// has neither u nor v in place of the other), the faces between them go
+// through uv, which no cone has, and a cone has distinct vertex ids (u, v
+// and distinct ring vertices).
+ReplaceResult ShellReplacer::replace(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                     const std::vector<RingTriangle>& triangles, ShellGeometry geometry,
+                                     std::vector<TetId>* created) {
+    Scratch& s = *scratch_;
+    if (!cone_ring(u, v, shell, triangles, s.plan)) return ReplaceResult::kBadInput;
+    const ReplaceResult tiling = link_ring_cones(m, u, v, shell, triangles, s.plan, s.edges);
+    if (tiling != ReplaceResult::kDone) return tiling;
+    if (shell_has_interior_constraint(m, u, v, shell)) return ReplaceResult::kRemovesConstraint;
+    if (geometry == ShellGeometry::kUnchecked) {
+        const ReplaceResult r = check_geometry(m, shell.tets, s.plan);
+        if (r != ReplaceResult::kDone) return r;
+    } else if (!hull_stays_convex_outside_region(m, s.plan)) {
+        return ReplaceResult::kNotConvex;
+    }
+    apply_plan(m, shell.tets, s.plan, s.slots, created);
     return ReplaceResult::kDone;
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "mesh/ball_shell.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::mesh {
@@ -82,6 +83,50 @@ public:
     ConeReplacer& operator=(const ConeReplacer&) = delete;
 
     ReplaceResult replace(TetMesh& m, const std::vector<TetId>& old, VertexId p,
+                          std::vector<TetId>* created = nullptr);
+
+    struct Scratch;  // surgery.cpp
+
+private:
+    std::unique_ptr<Scratch> scratch_;
+};
+
+// A triangle of the ring polygon of a shell: three indices into Shell::ring
+// in cyclic ring order (each a rotation of i < j < k).
+using RingTriangle = std::array<int, 3>;
+
+// What the caller of ShellReplacer has checked of the fresh tetrahedra.
+enum class ShellGeometry {
+    // Nothing: every geometric check of replace_tets runs.
+    kUnchecked,
+    // best_ring_triangulation chose the triangles: every finite fresh
+    // tetrahedron is positively oriented (exact) and every fresh ghost has
+    // the shell's finite vertices on the inner side of (or on) its hull
+    // face. Those checks are skipped; the rest of the convexity rule (the
+    // hull faces next to a fresh ghost outside the shell) still runs.
+    kScoredRing,
+};
+
+// replace_tets for the shell transformation (Definition 5.8): replaces the
+// shell of uv by the ring triangles coned to v and (reversed) to u: for
+// each triangle (i, j, k), in the order given, (ri, rj, rk, v) then
+// (ri, rk, rj, u). `shell` must be the current shell of uv (from shell())
+// in a valid mesh. Same result, checks, effects and `created` as
+// replace_tets(m, shell.tets, that list), only cheaper (edge removal runs
+// millions of times in flip recovery): the faces are matched by the
+// shell's structure (a ring edge's new faces meet the old faces opposite u
+// and v of its shell tetrahedron; a chord's are shared by the two
+// triangles on it) instead of by sorting, the scratch storage is kept from
+// one call to the next, and the checks `geometry` vouches for are skipped.
+class ShellReplacer {
+public:
+    ShellReplacer();
+    ~ShellReplacer();
+    ShellReplacer(const ShellReplacer&) = delete;
+    ShellReplacer& operator=(const ShellReplacer&) = delete;
+
+    ReplaceResult replace(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                          const std::vector<RingTriangle>& triangles, ShellGeometry geometry,
                           std::vector<TetId>* created = nullptr);
 
     struct Scratch;  // surgery.cpp
