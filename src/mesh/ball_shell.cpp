@@ -1,7 +1,9 @@
 #include "mesh/ball_shell.hpp"
 
 #include <algorithm>
-#include <unordered_set>
+#include <cstdint>
+
+#include "mesh/slot_marks.hpp"
 
 namespace cbr::mesh {
 namespace {
@@ -41,41 +43,53 @@ int vertex_index(const TetMesh& m, TetId t, VertexId v) {
 
 namespace {
 
-// Membership in a growing list of tetrahedra: a linear scan while the list
-// is short (a ball has a few dozen tetrahedra; no allocation per call), a
-// hash set once it is long (the ball of the infinite vertex is the hull).
-class Visited {
-public:
-    explicit Visited(const std::vector<TetId>& list) : list_(list) {}
-    bool contains(TetId t) {
-        if (list_.size() <= kLinear) return std::find(list_.begin(), list_.end(), t) != list_.end();
-        for (; indexed_ < list_.size(); ++indexed_) set_.insert(list_[indexed_]);
-        return set_.count(t) != 0;
-    }
-
-private:
-    static constexpr std::size_t kLinear = 64;
-    const std::vector<TetId>& list_;
-    std::unordered_set<TetId> set_;
-    std::size_t indexed_ = 0;
+// Reused by every ball walk of the thread: ball() and find_edge_tet() run
+// millions of times in a recovery, and a visited list searched linearly
+// (with a vector allocated per call) was a large part of their cost. A
+// per-slot mark answers "seen?" in O(1) and starts each walk clear in O(1).
+// One thread_local object: each one costs a TLS look-up per call.
+struct BallScratch {
+    SlotMarks seen;
+    std::vector<TetId> queue;  // find_edge_tet's breadth-first list
 };
+
+BallScratch& ball_scratch() {
+    thread_local BallScratch scratch;
+    return scratch;
+}
+
+constexpr std::uint8_t kSeen = 1;
+
+// Starts a walk: every slot of m unseen. (Fetched once per walk: the
+// library is also built shared, where each thread_local use is a call.)
+BallScratch& fresh_scratch(const TetMesh& m) {
+    BallScratch& scratch = ball_scratch();
+    scratch.seen.new_round(m.slot_count());
+    return scratch;
+}
+
+// Appends the tetrahedra across the faces of t that contain v (all but
+// the one opposite v) not seen yet, in face order, and marks them seen.
+void push_unseen_neighbors(const TetMesh& m, TetId t, VertexId v, SlotMarks& seen, std::vector<TetId>& list) {
+    for (int f = 0; f < 4; ++f) {
+        if (m.vertex(t, f) == v) continue;
+        const TetId n = facet_tet(m.neighbor(t, f));
+        if (seen.has(n, kSeen)) continue;
+        seen.set(n, kSeen);
+        list.push_back(n);
+    }
+}
 
 }  // namespace
 
 bool ball(const TetMesh& m, VertexId v, TetId start, std::vector<TetId>& out) {
     out.clear();
     if (!live(m, start) || vertex_index(m, start, v) < 0) return false;
+    SlotMarks& seen = fresh_scratch(m).seen;
+    seen.set(start, kSeen);
     out.push_back(start);
-    Visited seen(out);
-    // Breadth-first over the faces that contain v (all but the one opposite v).
-    for (std::size_t next = 0; next < out.size(); ++next) {
-        const TetId t = out[next];
-        for (int f = 0; f < 4; ++f) {
-            if (m.vertex(t, f) == v) continue;
-            const TetId n = facet_tet(m.neighbor(t, f));
-            if (!seen.contains(n)) out.push_back(n);
-        }
-    }
+    // Breadth-first: `out` is its own queue.
+    for (std::size_t next = 0; next < out.size(); ++next) push_unseen_neighbors(m, out[next], v, seen, out);
     return true;
 }
 
@@ -106,19 +120,23 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
 }
 
 TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
-    // The breadth-first walk of ball(), stopping at the first tetrahedron
-    // that has v.
+    // The breadth-first walk of ball(), returning the first tetrahedron of
+    // its order that has v. Each one is tested as it joins the list rather
+    // than when its turn comes: the same one is found (the list is in the
+    // same order either way), without expanding the tetrahedra before it.
     if (!live(m, start) || vertex_index(m, start, u) < 0) return kNoTet;
-    std::vector<TetId> tets{start};
-    Visited seen(tets);
+    if (vertex_index(m, start, v) >= 0) return start;
+    BallScratch& scratch = fresh_scratch(m);
+    SlotMarks& seen = scratch.seen;
+    std::vector<TetId>& tets = scratch.queue;
+    tets.clear();
+    seen.set(start, kSeen);
+    tets.push_back(start);
     for (std::size_t next = 0; next < tets.size(); ++next) {
-        const TetId t = tets[next];
-        if (vertex_index(m, t, v) >= 0) return t;
-        for (int f = 0; f < 4; ++f) {
-            if (m.vertex(t, f) == u) continue;
-            const TetId n = facet_tet(m.neighbor(t, f));
-            if (!seen.contains(n)) tets.push_back(n);
-        }
+        const std::size_t tested = tets.size();
+        push_unseen_neighbors(m, tets[next], u, seen, tets);
+        for (std::size_t i = tested; i < tets.size(); ++i)
+            if (vertex_index(m, tets[i], v) >= 0) return tets[i];
     }
     return kNoTet;
 }

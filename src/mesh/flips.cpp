@@ -136,10 +136,15 @@ FlipResult flip44(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect
 FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect,
                        std::vector<TetId>* created) {
     FlipScratch& scratch = flip_scratch();
-    const Shell& s = scratch.shell;
-    if (!shell_from(m, t, u, v, scratch.shell) || s.size() < 3 || s.size() > kMaxRemovalShell)
-        return FlipResult::kNotApplicable;
+    if (!shell_from(m, t, u, v, scratch.shell)) return FlipResult::kNotApplicable;
+    return remove_edge(m, u, v, scratch.shell, protect, created);
+}
+
+FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& s, const EdgeProtect& protect,
+                       std::vector<TetId>* created) {
+    if (s.size() < 3 || s.size() > kMaxRemovalShell) return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
+    FlipScratch& scratch = flip_scratch();
     if (!best_ring_triangulation(m, u, v, s, scratch.triangles)) return FlipResult::kNoValidTriangulation;
     return checked(scratch.replacer.replace(m, u, v, s, scratch.triangles, ShellGeometry::kScoredRing, created));
 }

@@ -79,6 +79,12 @@ inline constexpr std::size_t kMaxRemovalShell = 64;
 // kMaxRemovalShell tetrahedra.
 FlipResult remove_edge(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect = {},
                        std::vector<TetId>* created = nullptr);
+// The same with the shell of uv already found: `shell` must be the current
+// shell of uv (from shell()). For callers that need the shell again when
+// the removal fails (any result but kDone leaves the mesh, and so the
+// shell, unchanged), instead of walking it twice.
+FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& shell, const EdgeProtect& protect = {},
+                       std::vector<TetId>* created = nullptr);
 
 // The shell transformation (Definition 5.8) with a given triangulation of
 // the ring: every triangle (ri, rj, rk) gives (ri, rj, rk, v) and (ri, rk,

@@ -275,11 +275,13 @@ private:
         if (protect_(u, v) || u == kGhostVertex || v == kGhostVertex || budget_ <= 0) return false;
         --budget_;
         created_.clear();
-        if (done(mesh::remove_edge(m_, t, u, v, protect_, &created_))) return true;
-        if (depth == 0) return false;
         if (shells_.size() <= static_cast<std::size_t>(depth)) shells_.resize(static_cast<std::size_t>(depth) + 1);
         mesh::Shell& around = shells_[static_cast<std::size_t>(depth)];  // one per nesting level, reused
+        // One walk around uv: a failed removal leaves the mesh unchanged,
+        // so the shell it was given is still the shell of uv below.
         if (!mesh::shell(m_, u, v, t, around)) return false;
+        if (done(mesh::remove_edge(m_, u, v, around, protect_, &created_))) return true;
+        if (depth == 0) return false;
         for (std::size_t i = 0; i < around.size(); ++i) {
             const VertexId r = around.ring[i];
             if (r == kGhostVertex) continue;
