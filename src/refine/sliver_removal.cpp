@@ -136,11 +136,10 @@ bool SliverRemover::remove(TetId sliver) {
     // one's boundary hides: near a sharp feature the tetrahedra around a
     // sliver are thin too); the first reach with a valid star, its best
     // candidate.
-    std::vector<TetId> best_cavity;
     Point best_point = {0, 0, 0};
     double best = 0;
     cavity_.assign(1, sliver);
-    for (int reach = 1; reach <= kMaxReach; ++reach) {
+    for (int reach = 1; reach <= kMaxReach && best == 0; ++reach) {
         const std::size_t outer = cavity_.size();
         for (std::size_t i = 0; i < outer; ++i) {
             const TetId t = cavity_[i];
@@ -156,14 +155,13 @@ bool SliverRemover::remove(TetId sliver) {
         add_candidates(sliver);
         for (const Point& p : candidates_) {
             const double q = star_quality(p.data());
-            if (q > kSliverGain * old_min && q > best) best = q, best_point = p, best_cavity = cavity_;
+            if (q > kSliverGain * old_min && q > best) best = q, best_point = p;
         }
-        if (!best_cavity.empty()) break;  // the smallest cavity that works: the least change
     }
-    if (best_cavity.empty()) return false;
-    cavity_ = best_cavity;
+    // The loop stopped at the smallest cavity with a valid star (the least
+    // change), or found none.
+    if (best == 0) return false;
     const Point* chosen = &best_point;
-    if (!chosen) return false;
     const TetId start = containing(chosen->data());
     if (start == mesh::kNoTet) return false;
     const double h = c_.size.for_new_point(m_, start, chosen->data());

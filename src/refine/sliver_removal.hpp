@@ -11,7 +11,8 @@
 //
 // Here a point goes in with a chosen cavity instead (the protected
 // insertion kernel, recover::insert_protected_in_cavity): the sliver and
-// its neighbours across its non-constraint faces, all in one region. The
+// its neighbours across non-constraint faces, one ring after another up to
+// six, all in one region (the smallest that admits a valid star). The
 // point is the best of a few candidates (centroids of the sliver, of the
 // cavity, of each neighbour, and points above the sliver's constraint
 // faces), judged exactly before anything changes: every face of the
