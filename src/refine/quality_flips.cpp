@@ -33,10 +33,7 @@ public:
     double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
         return radius_ratio(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
     }
-    double q(TetId t) const {
-        const VertexId* v = m_.vertices(t);
-        return q(v[0], v[1], v[2], v[3]);
-    }
+    double q(TetId t) const { return radius_ratio(m_, t); }
 
 private:
     void adopt(const std::vector<TetId>& created, std::int32_t region) {

@@ -36,10 +36,6 @@ public:
     bool remove(TetId sliver);
 
 private:
-    double quality(TetId t) const {
-        const VertexId* v = m_.vertices(t);
-        return radius_ratio(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
-    }
     bool in_cavity(TetId t) const { return std::find(cavity_.begin(), cavity_.end(), t) != cavity_.end(); }
     void collect_boundary();
     double star_quality(const double* p) const;
@@ -150,7 +146,7 @@ bool SliverRemover::remove(TetId sliver) {
             }
         }
         double old_min = 1;
-        for (TetId t : cavity_) old_min = std::min(old_min, quality(t));
+        for (TetId t : cavity_) old_min = std::min(old_min, radius_ratio(m_, t));
         collect_boundary();
         add_candidates(sliver);
         for (const Point& p : candidates_) {
@@ -186,10 +182,7 @@ std::size_t remove_slivers(RefineContext& c, double threshold) {
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
-        if (!c.in_domain(t)) continue;
-        const VertexId* v = c.m.vertices(t);
-        if (radius_ratio(c.m.point(v[0]), c.m.point(v[1]), c.m.point(v[2]), c.m.point(v[3])) >= threshold) continue;
-        inserted += remover.remove(t);
+        if (c.in_domain(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
     }
     return inserted;
 }

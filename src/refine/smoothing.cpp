@@ -40,8 +40,7 @@ private:
 double Smoother::min_quality(double floor) const {
     double q = 1;
     for (TetId t : ball_) {
-        const VertexId* v = m_.vertices(t);
-        q = std::min(q, radius_ratio(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])));
+        q = std::min(q, radius_ratio(m_, t));
         if (q <= floor) break;
     }
     return q;
@@ -93,8 +92,7 @@ bool Smoother::smooth(VertexId v, TetId start) {
     std::size_t worst_at = 0;
     double worst_q = 2;
     for (std::size_t j = 0; j < ball_.size(); ++j) {
-        const VertexId* w = m_.vertices(ball_[j]);
-        const double q = radius_ratio(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
+        const double q = radius_ratio(m_, ball_[j]);
         if (q < worst_q) worst_q = q, worst_at = j;
     }
     // The worst tetrahedron first: the likeliest to stay below the best

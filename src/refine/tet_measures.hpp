@@ -6,6 +6,8 @@
 
 #include <array>
 
+#include "mesh/tet_mesh.hpp"
+
 namespace cbr::refine {
 
 using Point = std::array<double, 3>;
@@ -14,6 +16,11 @@ using Point = std::array<double, 3>;
 // flat one (the paper's Table II measure). Orientation-blind (uses |volume|);
 // computed after scaling to unit longest edge, clamped to [0, 1].
 double radius_ratio(const double* a, const double* b, const double* c, const double* d);
+// The same for tetrahedron t of m.
+inline double radius_ratio(const mesh::TetMesh& m, mesh::TetId t) {
+    const mesh::VertexId* v = m.vertices(t);
+    return radius_ratio(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
+}
 
 // Smallest and largest dihedral angle, in degrees.
 void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
