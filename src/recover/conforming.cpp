@@ -164,7 +164,6 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
     VertexId q = a;
     for (std::size_t step = 0; step < kMaxInsertionsPerConstraint; ++step) {
         if (edge_exists(q, b)) {
-            links_.insert(link_key(q, b));
             chain.push_back(b);
             points_.set_chain(a, b, std::move(chain));
             return true;
@@ -196,7 +195,6 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
         if (p == kGhostVertex) return false;
         points_.add_edge_point(p, a, b);
         if (!edge_exists(q, p)) return fail("an added point is not joined to the chain it extends");
-        links_.insert(link_key(q, p));
         chain.push_back(p);
         q = p;
     }
@@ -337,7 +335,7 @@ bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
     double apex[3];
     for (int k = 0; k < 3; ++k) apex[k] = (A[k] + B[k] + C[k]) / 3 + n[k];
     const std::array<VertexId, 4> v{m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3)};
-    const mesh::EdgeProtect is_link = [this](VertexId a, VertexId b) { return links_.count(link_key(a, b)) != 0; };
+    const mesh::EdgeProtect is_link = [this](VertexId a, VertexId b) { return points_.is_chain_link(a, b); };
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
             const VertexId a = v[i], b = v[j];

@@ -20,10 +20,7 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <string>
-#include <unordered_set>
-#include <utility>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -51,10 +48,6 @@ private:
     bool is_flat(mesh::TetId t, std::size_t face) const;
     bool remove_flat_tet(std::size_t face, mesh::TetId t);
     bool disk_is_complete(std::size_t face);
-    static std::uint64_t link_key(mesh::VertexId a, mesh::VertexId b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t{a} << 32) | b;
-    }
     // Inserts a point at xyz with `cavity` as initial cavity (with
     // `keep_cavity`, the correction keeps its finite tetrahedra); returns
     // its id or kGhostVertex (why_ set).
@@ -71,7 +64,6 @@ private:
     std::vector<mesh::TetId> incident_;
     std::vector<mesh::TetId> scratch_;
     ProtectedInserter inserter_;  // keeps its scratch storage across insertions
-    std::unordered_set<std::uint64_t> links_;  // every chain link made so far (never removed)
     std::string why_;
 };
 

@@ -96,6 +96,22 @@ bool SurfacePoints::on_one_edge(VertexId x, VertexId y, VertexId z) const {
     return false;
 }
 
+bool SurfacePoints::is_chain_link(VertexId x, VertexId y) const {
+    // The input edge both would lie on: that of an added edge point among
+    // them, or xy itself.
+    std::uint64_t edge = edge_key(x, y);
+    for (const VertexId v : {x, y}) {
+        const auto it = added_.find(v);
+        if (it != added_.end() && it->second.face == npos) edge = edge_key(it->second.a, it->second.b);
+    }
+    const auto it = chains_.find(edge);
+    if (it == chains_.end()) return false;
+    const std::vector<VertexId>& c = it->second;
+    for (std::size_t i = 0; i + 1 < c.size(); ++i)
+        if ((c[i] == x && c[i + 1] == y) || (c[i] == y && c[i + 1] == x)) return true;
+    return false;
+}
+
 std::vector<std::uint32_t> SurfacePoints::faces_of_edge(VertexId a, VertexId b) const {
     // The triangles at a that also have b: a's umbrella is short.
     std::vector<std::uint32_t> out;

@@ -59,6 +59,9 @@ public:
     // recovered in a conforming manner (a first, b last); empty if not yet.
     std::vector<mesh::VertexId> chain(mesh::VertexId a, mesh::VertexId b) const;
     void set_chain(mesh::VertexId a, mesh::VertexId b, std::vector<mesh::VertexId> chain);
+    // xy is a link of the chain of an input edge (two consecutive points
+    // of it; an input edge recovered as it was is a chain of one link).
+    bool is_chain_link(mesh::VertexId x, mesh::VertexId y) const;
     // Removes added point p from the chain it belongs to.
     void remove_from_chain(mesh::VertexId p);
 
