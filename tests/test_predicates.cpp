@@ -302,6 +302,28 @@ TEST_CASE("orient3d: sign convention") {
     CHECK(orient3d(o, o, y, z) == 0);
 }
 
+TEST_CASE("orient3d: two equal points give 0, whichever two") {
+    // The exact stage answers these without its expansions; a copy (equal
+    // values, another address) and the same pointer must both give 0, and
+    // -0.0 equals 0.0.
+    Rng rng(11);
+    for (int n = 0; n < 200; ++n) {
+        const double s = std::ldexp(1.0, rng.integer(-40, 40));
+        Point p[4] = {rng.point(-s, s), rng.point(-s, s), rng.point(-s, s), rng.point(-s, s)};
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+                Point q[4] = {p[0], p[1], p[2], p[3]};
+                q[j] = q[i];
+                CHECK(orient3d(q[0], q[1], q[2], q[3]) == 0);
+                const double* r[4] = {q[0].data(), q[1].data(), q[2].data(), q[3].data()};
+                r[j] = r[i];
+                CHECK(cbr::geom::orient3d(r[0], r[1], r[2], r[3]) == 0);
+            }
+    }
+    const Point zero{0, 0, 0}, negative_zero{-0.0, 0, -0.0}, x{1, 0, 0}, y{0, 1, 0};
+    CHECK(orient3d(zero, x, y, negative_zero) == 0);
+}
+
 TEST_CASE("orient3d: random points") {
     Rng rng(1);
     for (int n = 0; n < 3000; ++n) {

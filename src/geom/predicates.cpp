@@ -32,6 +32,8 @@ namespace {
 using xp::Expansion;
 using xp::minor2;
 
+bool same_point(const double* p, const double* q) { return p == q || (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]); }
+
 // Projection of 3D points onto a coordinate plane: drop coordinate `drop`
 // and keep the two others in cyclic order, so that the 2D orientation of
 // projected points equals component `drop` of the 3D cross product.
@@ -357,6 +359,13 @@ int orient3d_exact_raw(const double* a, const double* b, const double* c, const 
 int orient3d_exact(const double* a, const double* b, const double* c, const double* d,
                    PredicateCounters* counters) {
     if (counters) ++counters->orient3d_exact;
+    // Two equal points make two rows of the determinant equal: exactly 0,
+    // without the expansions. The filter cannot decide such a degenerate
+    // case, and callers meet it all the time (a segment tested against
+    // the faces around its own endpoint).
+    if (same_point(a, b) || same_point(a, c) || same_point(a, d) || same_point(b, c) || same_point(b, d) ||
+        same_point(c, d))
+        return 0;
     double u[3], v[3], w[3];
     if (exact_differences(b, a, u) & exact_differences(c, a, v) & exact_differences(d, a, w)) {
         const Expansion<4> m_uv = xy_minor(u, v), m_uw = xy_minor(u, w), m_vw = xy_minor(v, w);
