@@ -23,9 +23,12 @@
 #include "geom/point_in_triangle.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/failed_rings.hpp"
+#include "mesh/key_table.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/vertex_compaction.hpp"
 #include "recover/conforming.hpp"
+#include "recover/failed_searches.hpp"
 #include "recover/constraint_faces.hpp"
 #include "recover/flip_recovery.hpp"
 #include "recover/point_splitting.hpp"
@@ -33,6 +36,7 @@
 #include "recover/protected_insertion.hpp"
 #include "recover/recovery.hpp"
 #include "recover/surface_points.hpp"
+#include "hard_cases.hpp"
 #include "test_util.hpp"
 
 using namespace cbr::mesh;
@@ -1138,4 +1142,116 @@ TEST_CASE("triangulate_polygon: a self-crossing loop gets no triangulation" * do
     // check lets through.)
     const std::vector<P2> loop = {P2{2, -2, 0}, P2{1, 2, 0}, P2{-1, 3, 0}, P2{-1, 1, 0}, P2{0, 3, 0}, P2{-2, 0, 0}};
     CHECK(triangulate_polygon(ptrs(loop), Projection{0, 1}, +1).empty());
+}
+
+// ===========================================================================
+// 4. Flip recovery's memo of failed searches (FailedRings, FailedSearches)
+
+TEST_CASE("failed rings: one key for every way of walking the same shell") {
+    Shell s;
+    s.ring = {7, 3, 9, 4, 12};
+    const std::uint64_t k = FailedRings::key(5, 8, s);
+    Shell rotated = s;
+    std::rotate(rotated.ring.begin(), rotated.ring.begin() + 2, rotated.ring.end());
+    CHECK(FailedRings::key(5, 8, rotated) == k);
+    Shell reversed = s;  // the shell of vu walks the ring the other way
+    std::reverse(reversed.ring.begin(), reversed.ring.end());
+    CHECK(FailedRings::key(8, 5, reversed) == k);
+    std::rotate(reversed.ring.begin(), reversed.ring.begin() + 3, reversed.ring.end());
+    CHECK(FailedRings::key(8, 5, reversed) == k);
+    // Another shell: the ring in the other direction, another vertex, other ends.
+    CHECK(FailedRings::key(5, 8, reversed) != k);
+    Shell other = s;
+    other.ring[2] = 10;
+    CHECK(FailedRings::key(5, 8, other) != k);
+    CHECK(FailedRings::key(5, 6, s) != k);
+    Shell swapped = s;  // same vertices, another cyclic order
+    std::swap(swapped.ring[1], swapped.ring[2]);
+    CHECK(FailedRings::key(5, 8, swapped) != k);
+}
+
+TEST_CASE("key table: finds what it holds through growth") {
+    KeyTable<int> table;
+    CHECK(table.find(42) == nullptr);
+    for (std::uint64_t k = 0; k < 5000; ++k) table[k * 1000003u + 7] = static_cast<int>(k);
+    REQUIRE(table.size() == 5000);
+    for (std::uint64_t k = 0; k < 5000; ++k) {
+        const int* v = table.find(k * 1000003u + 7);
+        REQUIRE(v != nullptr);
+        CHECK(*v == static_cast<int>(k));
+    }
+    CHECK(table.find(8) == nullptr);
+    table[7] = -1;  // an existing key keeps one entry
+    CHECK(table.size() == 5000);
+    CHECK(*table.find(7) == -1);
+}
+
+TEST_CASE("failed searches: known only in the state they failed in") {
+    cbr::recover::FailedSearches memo;
+    memo.set_state(3);
+    CHECK(memo.spent(1, 2, 4) == -1);
+    memo.failed(1, 2, 4, 17);
+    CHECK(memo.spent(1, 2, 4) == 17);
+    CHECK(memo.spent(1, 2, 3) == -1);  // another depth is another search
+    CHECK(memo.spent(2, 1, 4) == -1);  // and so is the other direction
+    memo.set_state(4);
+    CHECK(memo.spent(1, 2, 4) == -1);
+    memo.failed(1, 2, 2, 5);
+    memo.set_state(3);  // a rollback to state 3: its failures hold again
+    CHECK(memo.spent(1, 2, 4) == -1);  // the entry now belongs to state 4
+    memo.set_state(4);
+    CHECK(memo.spent(1, 2, 2) == 5);
+}
+
+namespace {
+
+bool same_mesh(const TetMesh& a, const TetMesh& b) {
+    if (a.slot_count() != b.slot_count() || a.vertex_count() != b.vertex_count()) return false;
+    for (TetId t = 0; t < a.slot_count(); ++t) {
+        if (a.is_free(t) != b.is_free(t)) return false;
+        if (a.is_free(t)) continue;
+        for (int i = 0; i < 4; ++i) {
+            if (a.vertex(t, i) != b.vertex(t, i)) return false;
+            if (a.is_constrained(t, i) != b.is_constrained(t, i)) return false;
+        }
+    }
+    return true;
+}
+
+// Flip recovery of `p` with and without the memo: the same faces left and
+// the same mesh, slot by slot (skipping a search must change nothing).
+void require_memo_changes_nothing(const std::string& name, const std::vector<double>& xyz,
+                                  const std::vector<std::int64_t>& tris) {
+    INFO(name);
+    Case on, off;
+    build(on, xyz, tris);
+    build(off, xyz, tris);
+    const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(on.m(), *on.faces);
+    REQUIRE(missing == cbr::recover::mark_present_faces(off.m(), *off.faces));
+    const auto left_on = cbr::recover::recover_by_flips(on.m(), *on.faces, missing, cbr::recover::FlipMemo::kOn);
+    const auto left_off = cbr::recover::recover_by_flips(off.m(), *off.faces, missing, cbr::recover::FlipMemo::kOff);
+    MESSAGE(name << ": " << missing.size() << " missing, " << left_on.size() << " left after flips");
+    CHECK(left_on == left_off);
+    CHECK(same_mesh(on.m(), off.m()));
+    require_valid(on.m(), name.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("flip recovery: skipping searches known to fail changes nothing") {
+    const cbr::test::Polyhedron chazelle = cbr::test::chazelle_polyhedron();
+    require_memo_changes_nothing("chazelle", chazelle.xyz, chazelle.tris);
+    const cbr::test::Polyhedron stack = twisted_stack(4, kPi / 6);
+    require_memo_changes_nothing("schonhardt stack", stack.xyz, stack.tris);
+    cbr::test::OffSurface pierced;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/io/pierced-57.off", pierced));
+    require_memo_changes_nothing("pierced-57", pierced.xyz, pierced.tris);
+    // Shared surfaces whose deep searches repeat most (when present).
+    const std::string dir = cbr::test::shared_data_dir();
+    if (dir.empty()) return;
+    for (const char* name : {"thingiverse-mouth", "thingiverse-feeder-guide-arm", "cgal-dino"}) {
+        cbr::test::OffSurface s;
+        REQUIRE(cbr::test::read_off(dir + "/surfaces/" + name + ".off", s));
+        require_memo_changes_nothing(name, s.xyz, s.tris);
+    }
 }

@@ -93,13 +93,16 @@ bool ball(const TetMesh& m, VertexId v, TetId start, std::vector<TetId>& out) {
     return true;
 }
 
+bool holds_edge(const TetMesh& m, TetId t, VertexId u, VertexId v) {
+    return u != v && live(m, t) && vertex_index(m, t, u) >= 0 && vertex_index(m, t, v) >= 0;
+}
+
 bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
     out.tets.clear();
     out.ring.clear();
-    if (u == v || !live(m, start)) return false;
+    if (!holds_edge(m, start, u, v)) return false;
     TetId t = start;
     int iu = vertex_index(m, t, u), iv = vertex_index(m, t, v);
-    if (iu < 0 || iv < 0) return false;
     // Around the edge: cross the face opposite ring[i] (it holds u, v and
     // ring[i+1]); a valid mesh comes back to `start`, a broken one is cut
     // off after slot_count() steps.

@@ -14,6 +14,10 @@ namespace cbr::mesh {
 // Position of v in t (0..3), or -1.
 int vertex_index(const TetMesh& m, TetId t, VertexId v);
 
+// t is a live tetrahedron with u and v among its vertices (u != v): the
+// start that shell() needs.
+bool holds_edge(const TetMesh& m, TetId t, VertexId u, VertexId v);
+
 // Every tetrahedron incident to v, `start` first, then in breadth-first
 // order. False (and `out` empty) when `start` is not a live tetrahedron
 // containing v.

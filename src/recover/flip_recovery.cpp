@@ -1,11 +1,14 @@
 #include "recover/flip_recovery.hpp"
 
+#include <algorithm>
 #include <unordered_set>
 
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/failed_rings.hpp"
 #include "mesh/flips.hpp"
+#include "recover/failed_searches.hpp"
 #include "recover/segment_walk.hpp"
 
 namespace cbr::recover {
@@ -72,7 +75,7 @@ std::uint64_t edge_key(VertexId a, VertexId b) {
 
 class FlipRecovery {
 public:
-    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces) : m_(m), faces_(faces) {
+    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo) : m_(m), faces_(faces), memo_(memo) {
         incident_ = mesh::incident_tets(m_);
         for (std::size_t i = 0; i < faces_.size(); ++i) {
             const Triangle& t = faces_.triangle(i);
@@ -84,13 +87,21 @@ public:
     void set_search(const Search& s) { search_ = s; }
 
     // Recovers face i, or leaves the mesh exactly as it was (a copy of the
-    // mesh and of the incident-tetrahedron table taken before).
+    // mesh and of the incident-tetrahedron table, taken again only when
+    // the mesh changed since the last one: faces that fail one after
+    // another share it).
     bool recover_or_roll_back(std::size_t i) {
-        saved_mesh_ = m_;
-        saved_incident_ = incident_;
+        if (saved_state_ != state_) {
+            saved_mesh_ = m_;
+            saved_incident_ = incident_;
+            saved_state_ = state_;
+        }
         if (recover(i)) return true;
-        m_ = saved_mesh_;
-        incident_ = saved_incident_;
+        if (state_ != saved_state_) {
+            m_ = saved_mesh_;
+            incident_ = saved_incident_;
+            set_state(saved_state_);
+        }
         return false;
     }
 
@@ -111,8 +122,15 @@ private:
                 if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
     }
 
+    void set_state(FailedSearches::State s) {
+        state_ = s;
+        failed_removals_.set_state(s);
+        failed_wide_searches_.set_state(s);
+    }
+
     bool done(FlipResult r) {
         if (r != FlipResult::kDone) return false;
+        set_state(++last_state_);
         note_created();
         return true;
     }
@@ -147,7 +165,8 @@ private:
             // The first crossing from either end; when neither can be
             // flipped away, any crossing along the segment.
             const bool removed = remove_crossing(first_crossing(u, w)) || remove_crossing(first_crossing(w, u)) ||
-                                 (search_.wide && remove_any_crossing(u, w));
+                                 (search_.wide && unless_known_to_fail(failed_wide_searches_, u, w, search_.depth,
+                                                                       [&] { return remove_any_crossing(u, w); }));
             // A nested removal can change the mesh and still fail (the
             // inner flip worked, the outer did not): it may have made uw.
             if (!removed) return edge_tet(u, w) != kNoTet;
@@ -271,8 +290,38 @@ private:
     // Edge removal of uv (t contains it); when no triangulation of its ring
     // is valid, first remove an edge from u or v to a ring vertex (that
     // vertex then leaves the ring), up to `depth` levels, and try again.
+    // A search known to fail in the mesh as it is is not run again
+    // (FailedSearches: same outcome, same budget spent).
     bool remove_edge_deep(TetId t, VertexId u, VertexId v, int depth) {
         if (protect_(u, v) || u == kGhostVertex || v == kGhostVertex || budget_ <= 0) return false;
+        // t is stale when a removal tried before this one changed the mesh
+        // and still failed: that ends this search at once, whatever the
+        // mesh now allows (a search's outcome must depend on the mesh alone).
+        if (!mesh::holds_edge(m_, t, u, v)) {
+            --budget_;
+            return false;
+        }
+        return unless_known_to_fail(failed_removals_, u, v, depth, [&] { return search_edge_removal(t, u, v, depth); });
+    }
+
+    // Runs `search` (of edge uv at `depth`) unless it is known to fail in
+    // the mesh as it is, in which case only its budget is spent again.
+    template <class SearchFn>
+    bool unless_known_to_fail(FailedSearches& memo, VertexId u, VertexId v, int depth, SearchFn search) {
+        const int known = memo_ == FlipMemo::kOn ? memo.spent(u, v, depth) : -1;
+        if (known >= 0) {
+            budget_ = std::max(budget_ - known, 0);
+            return false;
+        }
+        const int budget_before = budget_;
+        const FailedSearches::State state_before = state_;
+        if (search()) return true;
+        // Cut short by the budget, or it changed the mesh: not a repeatable failure.
+        if (budget_ > 0 && state_ == state_before) memo.failed(u, v, depth, budget_before - budget_);
+        return false;
+    }
+
+    bool search_edge_removal(TetId t, VertexId u, VertexId v, int depth) {
         --budget_;
         created_.clear();
         if (shells_.size() <= static_cast<std::size_t>(depth)) shells_.resize(static_cast<std::size_t>(depth) + 1);
@@ -280,7 +329,14 @@ private:
         // One walk around uv: a failed removal leaves the mesh unchanged,
         // so the shell it was given is still the shell of uv below.
         if (!mesh::shell(m_, u, v, t, around)) return false;
-        if (done(mesh::remove_edge(m_, u, v, around, protect_, &created_))) return true;
+        // Small rings are quicker to search than to look up.
+        const bool memo = memo_ == FlipMemo::kOn && around.size() >= mesh::FailedRings::kMinRing;
+        const std::uint64_t ring = memo ? mesh::FailedRings::key(u, v, around) : 0;
+        if (!memo || !failed_rings_.contains(ring)) {
+            const FlipResult r = mesh::remove_edge(m_, u, v, around, protect_, &created_);
+            if (done(r)) return true;
+            if (memo && r == FlipResult::kNoValidTriangulation) failed_rings_.insert(ring);
+        }
         if (depth == 0) return false;
         for (std::size_t i = 0; i < around.size(); ++i) {
             const VertexId r = around.ring[i];
@@ -297,6 +353,7 @@ private:
 
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
+    const FlipMemo memo_;
     Search search_ = kSearches[0];
     int budget_ = 0;
     std::vector<TetId> incident_;
@@ -304,6 +361,13 @@ private:
     std::vector<TetId> saved_incident_;
     std::unordered_set<std::uint64_t> input_edges_;
     mesh::EdgeProtect protect_;
+    // Kept through rollbacks: a ring without a valid triangulation stays so.
+    mesh::FailedRings failed_rings_;
+    // remove_edge_deep and remove_any_crossing that failed in this state.
+    FailedSearches failed_removals_, failed_wide_searches_;
+    // The mesh's state: a new id after each flip, the old one back after
+    // a rollback.
+    FailedSearches::State state_ = 1, last_state_ = 1, saved_state_ = 0;
     std::vector<TetId> ball_, created_;
     mesh::Shell shell_;
     std::vector<mesh::Shell> shells_;
@@ -316,8 +380,8 @@ private:
 }  // namespace
 
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                          const std::vector<std::size_t>& missing) {
-    FlipRecovery flips(m, faces);
+                                          const std::vector<std::size_t>& missing, FlipMemo memo) {
+    FlipRecovery flips(m, faces, memo);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
     // repeats while a pass makes progress, a few times (the faces flips

@@ -18,10 +18,15 @@
 
 namespace cbr::recover {
 
+// Whether searches that are known to fail are skipped (FailedRings,
+// FailedSearches). Skipping changes nothing but the time: kOff is there
+// for the test that proves it.
+enum class FlipMemo { kOn, kOff };
+
 // Tries to recover the faces `missing` (indices into `faces`); marks the
 // recovered ones as constraint faces; returns those still missing, in
 // increasing order.
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                          const std::vector<std::size_t>& missing);
+                                          const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn);
 
 }  // namespace cbr::recover

@@ -1,0 +1,77 @@
+// A hash table from 64-bit keys to values, for the memo tables searches
+// ask millions of times (flip recovery's failed rings and searches):
+// open addressing with linear probing in a power-of-two array, so that a
+// lookup is one multiply-shift and, mostly, one cache line; std::unordered_map
+// spent most of its time there in an integer division and a chain of
+// scattered nodes. Entries are never erased.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace cbr::mesh {
+
+template <class Value>
+class KeyTable {
+public:
+    // The value of `key`, or nullptr.
+    Value* find(std::uint64_t key) {
+        if (slots_.empty()) return nullptr;
+        for (std::size_t i = home(key);; i = (i + 1) & mask()) {
+            Slot& s = slots_[i];
+            if (!s.used) return nullptr;
+            if (s.key == key) return &s.value;
+        }
+    }
+    const Value* find(std::uint64_t key) const { return const_cast<KeyTable*>(this)->find(key); }
+
+    // The value of `key`, value-initialised when it is new.
+    Value& operator[](std::uint64_t key) {
+        if (2 * (size_ + 1) > slots_.size()) grow();
+        for (std::size_t i = home(key);; i = (i + 1) & mask()) {
+            Slot& s = slots_[i];
+            if (!s.used) {
+                s.used = true;
+                s.key = key;
+                s.value = Value{};
+                ++size_;
+                return s.value;
+            }
+            if (s.key == key) return s.value;
+        }
+    }
+
+    std::size_t size() const { return size_; }
+
+private:
+    struct Slot {
+        std::uint64_t key = 0;
+        Value value{};
+        bool used = false;
+    };
+
+    std::size_t mask() const { return slots_.size() - 1; }
+    // Fibonacci hashing: the high bits of key times 2^64 / phi.
+    std::size_t home(std::uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    }
+
+    void grow() {
+        std::vector<Slot> old;
+        old.swap(slots_);
+        const std::size_t capacity = old.empty() ? 1024 : 2 * old.size();
+        slots_.assign(capacity, Slot{});
+        shift_ = 64;
+        for (std::size_t c = capacity; c > 1; c >>= 1) --shift_;
+        size_ = 0;
+        for (Slot& s : old)
+            if (s.used) (*this)[s.key] = s.value;
+    }
+
+    std::vector<Slot> slots_;
+    std::size_t size_ = 0;
+    int shift_ = 64;
+};
+
+}  // namespace cbr::mesh
