@@ -324,6 +324,32 @@ TEST_CASE("orient3d: two equal points give 0, whichever two") {
     CHECK(orient3d(zero, x, y, negative_zero) == 0);
 }
 
+TEST_CASE("orient3d: integer and dyadic points (the exact stage in doubles, and its way out)") {
+    // Up to 2^12 every step of the determinant is exact in doubles; up to
+    // 2^26 the minors are but their products by z need not be, and the
+    // exact stage must notice and fall back to expansions. Points on or
+    // next to a plane make the filter give up, so the exact stage decides.
+    Rng rng(12);
+    for (const int bits : {4, 12, 20, 26}) {
+        const double top = std::ldexp(1.0, bits);
+        for (int n = 0; n < 400; ++n) {
+            auto integer_point = [&] {
+                return Point{std::round(rng.uniform(-top, top)), std::round(rng.uniform(-top, top)),
+                             std::round(rng.uniform(-top, top))};
+            };
+            const Point a = integer_point(), b = integer_point(), c = integer_point();
+            const int s = rng.integer(-3, 3), t = rng.integer(-3, 3);
+            Point d;  // on the plane of abc (integer combination), then moved by -1, 0 or 1
+            for (int k = 0; k < 3; ++k) d[k] = a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]);
+            d[static_cast<std::size_t>(rng.integer(0, 2))] += rng.integer(-1, 1);
+            check_orient3d(a, b, c, d);
+            const double scale = std::ldexp(1.0, rng.integer(-60, 60));  // dyadic: same bits
+            auto scaled = [&](const Point& p) { return Point{p[0] * scale, p[1] * scale, p[2] * scale}; };
+            check_orient3d(scaled(a), scaled(b), scaled(c), scaled(d));
+        }
+    }
+}
+
 TEST_CASE("orient3d: random points") {
     Rng rng(1);
     for (int n = 0; n < 3000; ++n) {

@@ -23,6 +23,8 @@
 // components for insphere: about 170 KB of stack in that rare path).
 #include "geom/predicates.hpp"
 
+#include <cmath>
+
 #include "geom/expansion.hpp"
 #include "geom/plane_side.hpp"
 
@@ -75,6 +77,39 @@ Expansion<24> det3_from_minors(double pz, double qz, double rz, const Expansion<
 // xy minor m(p, q) = px qy - qx py.
 Expansion<4> xy_minor(const double* p, const double* q) {
     return minor2(p[0], q[1], q[0], p[1]);
+}
+
+// ---- determinants whose every step is exact in doubles --------------------
+// Coordinates with few significant bits (CAD grids, upsampled flat faces)
+// make every product and sum of a small determinant exact: its rounded value
+// is then the determinant, and the expansions are not needed. Each step is
+// checked by its error term (an explicit fma or two_sum); a product near the
+// underflow range is not trusted (its error could round to 0).
+
+bool exact_product(double a, double b, double& p) {
+    double err;
+    xp::two_product(a, b, p, err);
+    return err == 0.0 && (p == 0.0 || std::fabs(p) > 0x1p-900);
+}
+
+bool exact_sum(double a, double b, double& s) {
+    double err;
+    xp::two_sum(a, b, s, err);
+    return err == 0.0;
+}
+
+// m(p, q) = px qy - qx py, when exact.
+bool exact_xy_minor(const double* p, const double* q, double& m) {
+    double l, r;
+    return exact_product(p[0], q[1], l) && exact_product(q[0], p[1], r) && exact_sum(l, -r, m);
+}
+
+// det3_from_minors in doubles, when every step is exact.
+bool det3_in_doubles(const double* u, const double* v, const double* w, double& det) {
+    double m_vw, m_uw, m_uv, a, b, c, ab;
+    return exact_xy_minor(v, w, m_vw) && exact_xy_minor(u, w, m_uw) && exact_xy_minor(u, v, m_uv) &&
+           exact_product(u[2], m_vw, a) && exact_product(v[2], m_uw, b) && exact_product(w[2], m_uv, c) &&
+           exact_sum(a, -b, ab) && exact_sum(ab, c, det);
 }
 
 // Raw 2D orientation det[1, p; 1, q; 1, r] = m(q,r) - m(p,r) + m(p,q).
@@ -368,6 +403,8 @@ int orient3d_exact(const double* a, const double* b, const double* c, const doub
         return 0;
     double u[3], v[3], w[3];
     if (exact_differences(b, a, u) & exact_differences(c, a, v) & exact_differences(d, a, w)) {
+        double det;
+        if (det3_in_doubles(u, v, w, det)) return (det > 0) - (det < 0);
         const Expansion<4> m_uv = xy_minor(u, v), m_uw = xy_minor(u, w), m_vw = xy_minor(v, w);
         return det3_from_minors(u[2], v[2], w[2], m_vw, m_uw, m_uv).sign();
     }
