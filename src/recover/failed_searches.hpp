@@ -25,7 +25,7 @@ namespace cbr::recover {
 
 class FailedSearches {
 public:
-    static constexpr int kMaxDepth = 15;
+    static constexpr int kMaxDepth = 8;  // deeper searches are not remembered
 
     using State = std::uint64_t;
 

@@ -63,6 +63,7 @@ struct Search {
 // budget. (Measured: depth 7, 191 points; depth 6, octocat fails; one
 // pass, 179 for nearly the same time: the first pass is the cost.)
 constexpr Search kSearches[] = {{2, 100, false}, {3, 400, true}, {5, 2000, true}, {8, 40000, true, 3, true}};
+static_assert(kSearches[3].depth <= FailedSearches::kMaxDepth, "the deepest searches would not be remembered");
 // Tetrahedra searched for crossings of one segment (remove_any_crossing).
 constexpr std::size_t kMaxSearchedTets = 4096;
 // Passes over the faces still missing (recover_by_flips).
