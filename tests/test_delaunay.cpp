@@ -240,3 +240,52 @@ TEST_CASE("Hilbert index visits neighbouring cells consecutively") {
         CHECK(manhattan == 1);
     }
 }
+
+TEST_CASE("check_mesh reports each kind of corruption") {
+    // A valid mesh, then one defect at a time in a copy of it.
+    const std::vector<double> xyz = cbr::test::random_points(60, 7);
+    Delaunay d;
+    build(d, xyz);
+    const TetMesh& valid = d.mesh();
+    REQUIRE(cbr::mesh::check_mesh(valid).ok());
+    cbr::mesh::TetId t = 0, n = 0;
+    int f = 0;
+    for (t = 0; t < valid.slot_count(); ++t)
+        if (!valid.is_free(t) && !valid.is_ghost(t)) break;
+    for (f = 0; f < 4; ++f) {
+        n = cbr::mesh::facet_tet(valid.neighbor(t, f));
+        if (!valid.is_ghost(n)) break;
+    }
+    REQUIRE(f < 4);
+    auto first_error = [](const TetMesh& m) {
+        const cbr::mesh::CheckReport r = cbr::mesh::check_mesh(m);
+        return r.errors.empty() ? std::string() : r.errors[0];
+    };
+    auto has = [](const std::string& s, const char* what) { return s.find(what) != std::string::npos; };
+    {
+        // Linked across faces with different vertices: t's vertex on that
+        // face replaced by n's apex (t also turns inverted or flat, and its
+        // other links no longer match; any of these is a report).
+        TetMesh m = valid;
+        const int g = cbr::mesh::facet_face(valid.neighbor(t, f));
+        m.set_vertex(t, cbr::mesh::kFaceVertices[f][0], valid.vertex(n, g));
+        const cbr::mesh::CheckReport r = cbr::mesh::check_mesh(m);
+        CHECK(!r.ok());
+        bool across = false;
+        for (const std::string& e : r.errors) across = across || has(e, "linked across different faces");
+        CHECK(across);
+    }
+    {
+        TetMesh m = valid;  // a one-sided link
+        m.set_neighbor(t, f, cbr::mesh::make_facet(t, f));
+        CHECK(has(first_error(m), "link is not symmetric"));
+    }
+    {
+        TetMesh m = valid;  // inverted: two vertices swapped, links kept
+        const cbr::mesh::VertexId a = valid.vertex(t, 0), b = valid.vertex(t, 1);
+        m.set_vertex(t, 0, b);
+        m.set_vertex(t, 1, a);
+        const cbr::mesh::CheckReport r = cbr::mesh::check_mesh(m);
+        CHECK(!r.ok());
+    }
+}

@@ -1,9 +1,7 @@
 #include "mesh/mesh_check.hpp"
 
-#include <algorithm>
-#include <array>
 #include <sstream>
-#include <unordered_set>
+#include <vector>
 
 #include "geom/predicates.hpp"
 
@@ -12,11 +10,18 @@ namespace {
 
 constexpr std::size_t kMaxReported = 10;
 
-std::array<VertexId, 3> sorted_face(const TetMesh& m, TetId t, int f) {
-    std::array<VertexId, 3> v = {m.vertex(t, kFaceVertices[f][0]), m.vertex(t, kFaceVertices[f][1]),
-                                 m.vertex(t, kFaceVertices[f][2])};
-    std::sort(v.begin(), v.end());
-    return v;
+// Face f of t and face g of n have the same three vertices: each vertex of
+// the first is a vertex of n other than its apex n[g] (three distinct
+// vertices of n other than one: exactly the face g).
+bool same_face(const TetMesh& m, TetId t, int f, TetId n, int g) {
+    const VertexId* vn = m.vertices(n);
+    for (int k = 0; k < 3; ++k) {
+        const VertexId x = m.vertex(t, kFaceVertices[f][k]);
+        bool found = false;
+        for (int i = 0; i < 4; ++i) found = found || (i != g && vn[i] == x);
+        if (!found) return false;
+    }
+    return true;
 }
 
 std::string tet_name(const TetMesh& m, TetId t) {
@@ -50,7 +55,7 @@ void check_links(const TetMesh& m, TetId t, CheckReport& r) {
         }
         if (m.neighbor(n, facet_face(out)) != make_facet(t, f))
             r.add(tet_name(m, t) + ": face " + std::to_string(f) + " link is not symmetric");
-        else if (sorted_face(m, t, f) != sorted_face(m, n, facet_face(out)))
+        else if (!same_face(m, t, f, n, facet_face(out)))
             r.add(tet_name(m, t) + " and " + tet_name(m, n) + " are linked across different faces");
     }
 }
@@ -85,7 +90,8 @@ CheckReport check_mesh(const TetMesh& m) {
     CheckReport r;
     std::vector<char> used(m.vertex_count(), 0);
     std::size_t ghosts = 0, live = 0;
-    std::unordered_set<VertexId> hull_vertices;
+    std::vector<char> on_hull(m.vertex_count(), 0);
+    long long hull_vertices = 0;
     for (TetId t = 0; t < m.slot_count(); ++t) {
         if (m.is_free(t)) continue;
         ++live;
@@ -93,12 +99,18 @@ CheckReport check_mesh(const TetMesh& m) {
         check_links(m, t, r);
         if (m.is_ghost(t)) {
             ++ghosts;
-            for (int i = 0; i < 3; ++i) hull_vertices.insert(m.vertex(t, i));
+            for (int i = 0; i < 3; ++i) {
+                const VertexId v = m.vertex(t, i);
+                if (v < on_hull.size() && !on_hull[v]) {
+                    on_hull[v] = 1;
+                    ++hull_vertices;
+                }
+            }
         }
     }
     if (live == 0) return r;
     // The hull is a closed triangulated sphere: F faces, 3F/2 edges.
-    const long long V = static_cast<long long>(hull_vertices.size());
+    const long long V = hull_vertices;
     const long long F = static_cast<long long>(ghosts);
     if (F % 2 != 0 || V - 3 * F / 2 + F != 2)
         r.add("hull is not a closed sphere: " + std::to_string(V) + " vertices, " + std::to_string(F) + " faces");
