@@ -7,6 +7,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/failed_rings.hpp"
+#include "mesh/key_table.hpp"
 #include "mesh/flips.hpp"
 #include "recover/failed_searches.hpp"
 #include "recover/segment_walk.hpp"
@@ -80,12 +81,14 @@ public:
         incident_ = mesh::incident_tets(m_);
         for (std::size_t i = 0; i < faces_.size(); ++i) {
             const Triangle& t = faces_.triangle(i);
-            for (int k = 0; k < 3; ++k) input_edges_.insert(edge_key(t[k], t[(k + 1) % 3]));
+            for (int k = 0; k < 3; ++k) input_edges_[edge_key(t[k], t[(k + 1) % 3])] = true;
         }
-        protect_ = [this](VertexId a, VertexId b) { return input_edges_.count(edge_key(a, b)) != 0; };
+        protect_ = [this](VertexId a, VertexId b) { return is_input_edge(a, b); };
     }
 
     void set_search(const Search& s) { search_ = s; }
+
+    bool is_input_edge(VertexId a, VertexId b) const { return input_edges_.find(edge_key(a, b)) != nullptr; }
 
     // Recovers face i, or leaves the mesh exactly as it was (a copy of the
     // mesh and of the incident-tetrahedron table, taken again only when
@@ -294,7 +297,7 @@ private:
     // A search known to fail in the mesh as it is is not run again
     // (FailedSearches: same outcome, same budget spent).
     bool remove_edge_deep(TetId t, VertexId u, VertexId v, int depth) {
-        if (protect_(u, v) || u == kGhostVertex || v == kGhostVertex || budget_ <= 0) return false;
+        if (is_input_edge(u, v) || u == kGhostVertex || v == kGhostVertex || budget_ <= 0) return false;
         // t is stale when a removal tried before this one changed the mesh
         // and still failed: that ends this search at once, whatever the
         // mesh now allows (a search's outcome must depend on the mesh alone).
@@ -360,7 +363,7 @@ private:
     std::vector<TetId> incident_;
     mesh::TetMesh saved_mesh_;            // recover_or_roll_back
     std::vector<TetId> saved_incident_;
-    std::unordered_set<std::uint64_t> input_edges_;
+    mesh::KeyTable<bool> input_edges_;
     mesh::EdgeProtect protect_;
     // Kept through rollbacks: a ring without a valid triangulation stays so.
     mesh::FailedRings failed_rings_;
