@@ -238,6 +238,18 @@ run_local_outputs() {
     expect 1 "--growth needs a rate" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --growth
     expect 0 "" mesh "$tmp/cube.off" -o "$tmp/cube-grown.mesh" --size 0.25 --growth 0.5 &&
         report_has "field points inserted"
+    # Without --growth the library's default (0.3) applies, not 0: the demo's
+    # nine-sphere box gets the points of --growth 0.3, fewer than with 0.
+    expect 0 "" demo -q -o "$tmp/nine.mesh"
+    for g in default 0.3 0; do
+        growth_arg=""
+        [ "$g" = default ] || growth_arg="--growth $g"
+        # shellcheck disable=SC2086
+        expect 0 "" mesh -q "$tmp/nine.mesh" -o "$tmp/nine-$g.mesh" $growth_arg --json "$tmp/nine-$g.json"
+    done
+    json_has "$tmp/nine-default.json" \
+        "d['refine']['field_points'] == json.load(open('$tmp/nine-0.3.json'))['refine']['field_points']" \
+        "d['refine']['field_points'] < json.load(open('$tmp/nine-0.json'))['refine']['field_points']"
     expect 1 "no output file" mesh "$tmp/cube.off"
     expect 0 "" --help && report_has "mesh IN -o OUT" && report_has "demo \[-o OUT\]"
 

@@ -66,7 +66,8 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
     if (options.refine) {
         steps.begin("generating the mesh");
         status = cbr_mesh_set_param(m, CBR_PARAM_REFINE_SIZE, options.size);
-        if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_REFINE_GROWTH, options.growth);
+        if (status == CBR_OK && options.growth >= 0)
+            status = cbr_mesh_set_param(m, CBR_PARAM_REFINE_GROWTH, options.growth);
         if (status == CBR_OK) status = cbr_mesh_refine(m);
         if (status != CBR_OK) {
             RecoveryOutcome failed = api_failure(m, status);

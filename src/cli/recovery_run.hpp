@@ -26,7 +26,7 @@ struct RecoveryOptions {
     // with CBR_PARAM_REFINE_SIZE = size (0: from the surface).
     bool refine = false;
     double size = 0;
-    double growth = 0;  // CBR_PARAM_REFINE_GROWTH
+    double growth = -1;  // CBR_PARAM_REFINE_GROWTH; < 0: the library's default
 };
 
 // What cbr_mesh_refine reports (its CBR_STAT_* keys).

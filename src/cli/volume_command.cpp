@@ -26,7 +26,7 @@ constexpr int kContinue = -1;
 struct VolumeArgs : OutputOptions {
     std::string input;
     double size = 0;    // mesh --size H; 0: from the surface
-    double growth = 0;  // mesh --growth R; 0: the surface field interpolated
+    double growth = -1;  // mesh --growth R; < 0: not given (the library's default)
     bool keep_exterior = false;
     bool allow_open = false;
 };

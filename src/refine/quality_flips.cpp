@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include "mesh/ball_shell.hpp"
@@ -29,6 +32,7 @@ class Flipper {
 public:
     explicit Flipper(RefineContext& c) : c_(c), m_(c.m) {}
     bool try_edge(TetId t, VertexId u, VertexId v);
+    bool remove_edge(TetId t, VertexId u, VertexId v);
     bool try_face(TetId t, int f);
     double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
         return radius_ratio(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
@@ -36,17 +40,41 @@ public:
     double q(TetId t) const { return radius_ratio(m_, t); }
 
 private:
+    static std::uint64_t key(VertexId a, VertexId b) {
+        if (a > b) std::swap(a, b);
+        return (std::uint64_t{a} << 32) | b;
+    }
+    // The new tetrahedra join the region; the edges around them have new
+    // shells, so an edge removal refused there may now be possible.
     void adopt(const std::vector<TetId>& created, std::int32_t region) {
-        for (TetId t : created) c_.set_region(t, region);
+        for (TetId t : created) {
+            c_.set_region(t, region);
+            const VertexId* w = m_.vertices(t);
+            for (int i = 0; i < 4; ++i)
+                for (int j = i + 1; j < 4; ++j) refused_.erase(key(w[i], w[j]));
+        }
     }
     RefineContext& c_;
     mesh::TetMesh& m_;
+    // Edges whose removal was refused in this sweep and whose shell has not
+    // changed since (nothing moves during a sweep): the same shell would be
+    // refused again, so it is not tried again from the other tetrahedra
+    // around it.
+    std::unordered_set<std::uint64_t> refused_;
 };
 
 // Edge removal of uv (Definition 5.8, the shell transformation) with the
 // ring triangulation of mesh/flips.hpp.
 bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
-    if (c_.is_surface_edge(u, v)) return false;
+    if (c_.is_surface_edge(u, v) || refused_.count(key(u, v))) return false;
+    if (!remove_edge(t, u, v)) {
+        refused_.insert(key(u, v));
+        return false;
+    }
+    return true;
+}
+
+bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     mesh::Shell s;
     if (!mesh::shell(m_, u, v, t, s) || s.size() < 3 || s.size() > kMaxShell || s.has_ghost()) return false;
     const std::int32_t region = c_.region(t);
@@ -109,7 +137,7 @@ std::size_t improve_by_flips(RefineContext& c, double threshold) {
     std::size_t flips = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
-        if (!c.in_domain(t) || flipper.q(t) >= threshold) continue;
+        if (!c.in_domain(t) || !c.changed_near(t) || flipper.q(t) >= threshold) continue;
         bool done = false;
         for (int i = 0; i < 4 && !done; ++i)
             for (int j = i + 1; j < 4 && !done; ++j)

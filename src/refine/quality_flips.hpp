@@ -14,7 +14,9 @@
 namespace cbr::refine {
 
 // One sweep over the tetrahedra of the bounded regions whose radius ratio
-// is below `threshold`; returns the number of flips done.
+// is below `threshold` and that changed, or have a face neighbour that
+// changed, since the previous pass (RefineContext::changed_near); returns
+// the number of flips done.
 std::size_t improve_by_flips(RefineContext& c, double threshold);
 
 }  // namespace cbr::refine

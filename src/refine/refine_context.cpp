@@ -43,6 +43,19 @@ RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces
 void RefineContext::set_region(mesh::TetId t, std::int32_t r) {
     if (t >= region_.size()) region_.resize(std::max<std::size_t>(t + 1, region_.size() * 3 / 2), -1);
     region_[t] = r;
+    touch(t);
+}
+
+bool RefineContext::changed_near(mesh::TetId t) const {
+    if (changed(t)) return true;
+    for (int f = 0; f < 4; ++f)
+        if (changed(mesh::facet_tet(m.neighbor(t, f)))) return true;
+    return false;
+}
+
+void RefineContext::touch(mesh::TetId t) {
+    if (t >= stamp_.size()) stamp_.resize(std::max<std::size_t>(t + 1, stamp_.size() * 3 / 2), 0);
+    stamp_[t] = pass_;
 }
 
 bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const {

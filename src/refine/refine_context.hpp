@@ -51,6 +51,19 @@ public:
     // Every edge of t within the size bound.
     bool tet_within_size(mesh::TetId t) const;
 
+    // Change tracking for the optimisation passes: each tetrahedron slot
+    // remembers the pass in which it was last created (set_region) or
+    // reshaped (touch: a corner moved). A pass need not look again at what
+    // did not change since the pass before it: its attempt there failed
+    // and would fail again.
+    void start_pass() { ++pass_; }
+    void touch(mesh::TetId t);
+    // Created or reshaped during the previous pass or this one (every slot
+    // before the second pass).
+    bool changed(mesh::TetId t) const { return (t < stamp_.size() ? stamp_[t] : 0) + 1 >= pass_; }
+    // t or a tetrahedron across one of its faces changed.
+    bool changed_near(mesh::TetId t) const;
+
     // Registers a point appended to m (value of the sizing field there).
     void add_vertex(double h) { size.add(h); }
 
@@ -58,6 +71,8 @@ public:
 
 private:
     std::vector<std::int32_t> region_;
+    std::vector<std::uint32_t> stamp_;  // per slot: the pass that last created or reshaped it
+    std::uint32_t pass_ = 0;            // 0 during refinement, then 1, 2, ... per optimisation pass
     std::vector<char> surface_vertex_;
     std::vector<double> reach_;  // per surface vertex: largest circumradius of its input triangles
     std::vector<char> movable_;

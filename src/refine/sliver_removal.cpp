@@ -7,6 +7,7 @@
 
 #include "geom/predicates.hpp"
 #include "mesh/errors.hpp"
+#include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
 #include "refine/tet_measures.hpp"
 
@@ -36,15 +37,21 @@ public:
     bool remove(TetId sliver);
 
 private:
-    bool in_cavity(TetId t) const { return std::find(cavity_.begin(), cavity_.end(), t) != cavity_.end(); }
+    bool in_cavity(TetId t) const { return marks_.has(t, kInCavity); }
+    void add_to_cavity(TetId t) {
+        cavity_.push_back(t);
+        marks_.set(t, kInCavity);
+    }
     void collect_boundary();
-    double star_quality(const double* p) const;
+    double star_quality(const double* p, double floor) const;
     void add_candidates(TetId sliver);
     TetId containing(const double* p) const;
 
     RefineContext& c_;
     mesh::TetMesh& m_;
     std::vector<TetId> cavity_;
+    static constexpr std::uint8_t kInCavity = 1u << 0;
+    mesh::SlotMarks marks_;  // kInCavity: the slots of cavity_
     std::vector<BoundaryFace> boundary_;
     std::vector<Point> candidates_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
@@ -63,12 +70,15 @@ void SliverRemover::collect_boundary() {
 }
 
 // The worst radius ratio of the star of p over the cavity's boundary; -1
-// when a boundary face does not see p strictly (exact).
-double SliverRemover::star_quality(const double* p) const {
+// when a boundary face does not see p strictly (exact). Stops early with
+// some value at most `floor` once the star is known to be no better than
+// that (the caller wants only stars above it).
+double SliverRemover::star_quality(const double* p, double floor) const {
     double worst = 1;
     for (const BoundaryFace& f : boundary_) {
         if (geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) <= 0) return -1;
         worst = std::min(worst, radius_ratio(f.corners[0], f.corners[1], f.corners[2], p));
+        if (worst <= floor) return worst;
     }
     return worst;
 }
@@ -134,7 +144,9 @@ bool SliverRemover::remove(TetId sliver) {
     // candidate.
     Point best_point = {0, 0, 0};
     double best = 0;
-    cavity_.assign(1, sliver);
+    marks_.new_round(m_.slot_count());
+    cavity_.clear();
+    add_to_cavity(sliver);
     for (int reach = 1; reach <= kMaxReach && best == 0; ++reach) {
         const std::size_t outer = cavity_.size();
         for (std::size_t i = 0; i < outer; ++i) {
@@ -142,7 +154,7 @@ bool SliverRemover::remove(TetId sliver) {
             for (int f = 0; f < 4; ++f) {
                 if (m_.is_constrained(t, f)) continue;
                 const TetId n = facet_tet(m_.neighbor(t, f));
-                if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) cavity_.push_back(n);
+                if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) add_to_cavity(n);
             }
         }
         double old_min = 1;
@@ -150,7 +162,7 @@ bool SliverRemover::remove(TetId sliver) {
         collect_boundary();
         add_candidates(sliver);
         for (const Point& p : candidates_) {
-            const double q = star_quality(p.data());
+            const double q = star_quality(p.data(), std::max(best, kSliverGain * old_min));
             if (q > kSliverGain * old_min && q > best) best = q, best_point = p;
         }
     }
@@ -182,7 +194,7 @@ std::size_t remove_slivers(RefineContext& c, double threshold) {
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
-        if (c.in_domain(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
+        if (c.in_domain(t) && c.changed_near(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
     }
     return inserted;
 }

@@ -28,7 +28,9 @@
 namespace cbr::refine {
 
 // Tries every tetrahedron of the bounded regions with radius ratio below
-// `threshold`; returns the number of points inserted.
+// `threshold` that changed, or has a face neighbour that changed, since the
+// previous pass (RefineContext::changed_near: the others failed then and
+// would fail again); returns the number of points inserted.
 std::size_t remove_slivers(RefineContext& c, double threshold);
 
 }  // namespace cbr::refine

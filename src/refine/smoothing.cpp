@@ -18,6 +18,14 @@ using mesh::VertexId;
 // Below this radius ratio, the worst tetrahedron of a ball also gets
 // candidates that lift the vertex off its opposite face.
 constexpr double kLiftBelow = 0.3;
+// A ball whose worst tetrahedron is at least kMeanFrom is smoothed for its
+// mean quality (what Table II's average counts), its worst kept at least
+// min(old worst, kMeanFloor); below kMeanFrom, for its worst. A move must
+// raise the ball's sum of qualities by the factor kMeanGain (no drift on
+// ties).
+constexpr double kMeanFrom = 0.15;
+constexpr double kMeanFloor = 0.3;
+constexpr double kMeanGain = 1.0 + 1e-3;
 
 class Smoother {
 public:
@@ -26,6 +34,8 @@ public:
 
 private:
     double min_quality(double floor) const;
+    double sum_quality(double floor) const;
+    bool odt_point(Point& out) const;
     bool ball_valid(VertexId v) const;
 
     RefineContext& c_;
@@ -46,6 +56,42 @@ double Smoother::min_quality(double floor) const {
     return q;
 }
 
+// The sum of the ball's qualities; -1 as soon as one is below `floor`.
+double Smoother::sum_quality(double floor) const {
+    double sum = 0;
+    for (TetId t : ball_) {
+        const double q = radius_ratio(m_, t);
+        if (q < floor) return -1;
+        sum += q;
+    }
+    return sum;
+}
+
+// The volume-weighted mean of the circumcentres of the ball's tetrahedra
+// (the vertex position of an optimal Delaunay triangulation, Chen & Xu
+// 2004); false when the ball has no volume.
+bool Smoother::odt_point(Point& out) const {
+    Point sum = {0, 0, 0};
+    double weight = 0;
+    for (TetId t : ball_) {
+        const VertexId* w = m_.vertices(t);
+        const double* a = m_.point(w[0]);
+        Point centre;
+        if (!circumcentre(a, m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), centre)) continue;
+        const double* q[3] = {m_.point(w[1]), m_.point(w[2]), m_.point(w[3])};
+        const double u[3] = {q[0][0] - a[0], q[0][1] - a[1], q[0][2] - a[2]};
+        const double s[3] = {q[1][0] - a[0], q[1][1] - a[1], q[1][2] - a[2]};
+        const double x[3] = {q[2][0] - a[0], q[2][1] - a[1], q[2][2] - a[2]};
+        const double volume = std::fabs(u[0] * (s[1] * x[2] - s[2] * x[1]) - u[1] * (s[0] * x[2] - s[2] * x[0]) +
+                                        u[2] * (s[0] * x[1] - s[1] * x[0]));
+        for (int k = 0; k < 3; ++k) sum[k] += volume * centre[k];
+        weight += volume;
+    }
+    if (!(weight > 0)) return false;
+    for (int k = 0; k < 3; ++k) out[k] = sum[k] / weight;
+    return std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]);
+}
+
 bool Smoother::ball_valid(VertexId v) const {
     for (TetId t : ball_) {
         const VertexId* w = m_.vertices(t);
@@ -58,13 +104,22 @@ bool Smoother::ball_valid(VertexId v) const {
 
 // Candidate positions: the centroid of the ball's other vertices (Laplacian
 // smoothing, §6 "local constrained Laplacian smoothing"), half and a quarter
-// of the way there; then, when the worst tetrahedron of the ball is still
-// bad, steps away from its face opposite v, along that face's normal (a
-// vertex too close to a face, often a face of the surface, is lifted off
-// it). The best candidate that raises the ball's minimum quality wins.
+// of the way there; the ODT point and half the way there; then, when the
+// worst tetrahedron of the ball is still bad, steps away from its face
+// opposite v, along that face's normal (a vertex too close to a face, often
+// a face of the surface, is lifted off it). A ball with a bad tetrahedron
+// (worst below kMeanFrom) takes the candidate that raises its worst
+// quality most; any other ball the one that raises its mean most, its
+// worst kept above min(old worst, kMeanFloor). Every candidate keeps the
+// ball valid and within the size bound. Skipped when nothing in the ball
+// changed since the previous pass.
 bool Smoother::smooth(VertexId v, TetId start) {
     if (!mesh::ball(m_, v, start, ball_)) return false;
     neighbours_.clear();
+    bool changed = false;
+    for (TetId t : ball_) changed = changed || c_.changed(t);
+    // Nothing changed around v since its last try: it would fail again.
+    if (!changed) return false;
     for (TetId t : ball_) {
         if (!c_.in_domain(t)) return false;
         for (int i = 0; i < 4; ++i)
@@ -86,6 +141,16 @@ bool Smoother::smooth(VertexId v, TetId start) {
         Point p;
         for (int k = 0; k < 3; ++k) p[k] = here[k] + step * (centroid[k] - here[k]);
         candidates.push_back(p);
+    }
+    // Optimal-Delaunay (ODT) smoothing: the volume-weighted mean of the
+    // ball's circumcentres, and half the way there.
+    Point odt;
+    if (odt_point(odt)) {
+        for (double step : {1.0, 0.5}) {
+            Point p;
+            for (int k = 0; k < 3; ++k) p[k] = here[k] + step * (odt[k] - here[k]);
+            candidates.push_back(p);
+        }
     }
     // The worst tetrahedron and the unit normal of its face opposite v,
     // pointing toward v (the face's vertices in kFaceVertices order).
@@ -120,13 +185,29 @@ bool Smoother::smooth(VertexId v, TetId start) {
     const double old_min = worst_q;
     double best_q = old_min;
     const Point* best = nullptr;
-    for (const Point& p : candidates) {
-        m_.set_point(v, p.data());
-        if (!ball_valid(v)) continue;
-        const double q = min_quality(best_q);
-        if (q > best_q) best_q = q, best = &p;
+    if (old_min >= kMeanFrom) {
+        // A ball without a bad tetrahedron: the candidate with the best
+        // mean quality, as long as its worst stays above kMeanFloor (or
+        // above the old worst, when that was lower).
+        const double floor = std::min(old_min, kMeanFloor);
+        double best_sum = sum_quality(floor) * kMeanGain;
+        for (const Point& p : candidates) {
+            m_.set_point(v, p.data());
+            if (!ball_valid(v)) continue;
+            const double sum = sum_quality(floor);
+            if (sum > best_sum) best_sum = sum, best = &p;
+        }
+    } else {
+        for (const Point& p : candidates) {
+            m_.set_point(v, p.data());
+            if (!ball_valid(v)) continue;
+            const double q = min_quality(best_q);
+            if (q > best_q) best_q = q, best = &p;
+        }
     }
     m_.set_point(v, best ? best->data() : here.data());
+    if (best)
+        for (TetId t : ball_) c_.touch(t);
     return best != nullptr;
 }
 

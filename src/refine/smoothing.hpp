@@ -4,9 +4,11 @@
 // points and recovery's Steiner points), only inside the bounded regions,
 // and a move is kept only when every tetrahedron of the vertex's ball stays
 // positively oriented (exact orient3d: the vertex stays strictly inside its
-// ball, so it never reaches the surface), its smallest radius ratio grows,
-// and no edge breaks the size bound. Otherwise the vertex goes back, bit
-// for bit.
+// ball, so it never reaches the surface), no edge breaks the size bound,
+// and the ball gets better: its smallest radius ratio grows when it has a
+// bad tetrahedron (below 0.15), else its mean grows while its smallest
+// stays at least min(old smallest, 0.3) (smoothing.cpp). Otherwise the
+// vertex goes back, bit for bit.
 #pragma once
 
 #include <cstddef>
@@ -15,7 +17,8 @@
 
 namespace cbr::refine {
 
-// One sweep over the movable vertices; returns the number of moves kept.
+// One sweep over the movable vertices whose ball changed since the previous
+// pass (RefineContext::changed); returns the number of moves kept.
 std::size_t smooth_vertices(RefineContext& c);
 
 }  // namespace cbr::refine

@@ -34,20 +34,34 @@ bool unit_edges(const double* a, const double* b, const double* c, const double*
     return true;
 }
 
-}  // namespace
-
-double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
-    V u, v, w;
-    if (!unit_edges(a, b, c, d, u, v, w)) return 0;
+// q from the edges u, v, w at one corner; false (q not set) when the
+// products, of six lengths, leave the range where double keeps its full
+// precision.
+bool radius_ratio_of(const V& u, const V& v, const V& w, double& q) {
     const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
     const double det = dot(u, vw);  // 6 x signed volume
-    if (det == 0) return 0;
     // r_in = |det| / (2 S), S = sum of face areas; r_circ = |N| / (2 |det|).
     const double area2 = len(uv) + len(wu) + len(vw) + len(cross(sub(v, u), sub(w, u)));  // 2 S
     const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
     const V n = {uu * vw[0] + vv * wu[0] + ww * uv[0], uu * vw[1] + vv * wu[1] + ww * uv[1],
                  uu * vw[2] + vv * wu[2] + ww * uv[2]};
-    const double q = 6 * det * det / (area2 * len(n));  // 3 * (|det| / 2S) / (|N| / 2|det|)
+    const double denominator = area2 * len(n);
+    if (!(denominator >= 1e-280 && denominator <= 1e280)) return false;
+    q = 6 * det * det / denominator;  // 3 * (|det| / 2S) / (|N| / 2|det|)
+    return true;
+}
+
+}  // namespace
+
+// q is scale-free: the raw edges first (the common case, no scaling
+// needed), the edges scaled to a unit longest edge when a product leaves
+// the range of double.
+double radius_ratio(const double* a, const double* b, const double* c, const double* d) {
+    double q = 0;
+    if (!radius_ratio_of(sub(b, a), sub(c, a), sub(d, a), q)) {
+        V u, v, w;
+        if (!unit_edges(a, b, c, d, u, v, w) || !radius_ratio_of(u, v, w, q)) return 0;
+    }
     if (!std::isfinite(q)) return 0;
     return std::clamp(q, 0.0, 1.0);
 }

@@ -14,7 +14,9 @@ using Point = std::array<double, 3>;
 
 // Radius ratio q = 3 r_in / r_circ: 1 for the regular tetrahedron, 0 for a
 // flat one (the paper's Table II measure). Orientation-blind (uses |volume|);
-// computed after scaling to unit longest edge, clamped to [0, 1].
+// from the raw edges, or after scaling to unit longest edge when their
+// products would leave the range where double is exact to full precision;
+// clamped to [0, 1].
 double radius_ratio(const double* a, const double* b, const double* c, const double* d);
 // The same for tetrahedron t of m.
 inline double radius_ratio(const mesh::TetMesh& m, mesh::TetId t) {
