@@ -24,7 +24,6 @@ RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces
     movable_.assign(m.vertex_count(), 0);
     for (mesh::VertexId v : movable)
         if (v < movable_.size()) movable_[v] = 1;
-    surface_edges_.reserve(3 * faces.size());
     reach_.assign(m.vertex_count(), 0);
     for (std::size_t i = 0; i < faces.size(); ++i) {
         const recover::Triangle& t = faces.triangle(i);
@@ -34,7 +33,7 @@ RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces
                              ? std::sqrt(r2) : 0;
         for (int k = 0; k < 3; ++k) {
             surface_vertex_[t[k]] = 1;
-            surface_edges_.insert(edge_key(t[k], t[(k + 1) % 3]));
+            surface_edges_[edge_key(t[k], t[(k + 1) % 3])] = true;
             reach_[t[k]] = std::max(reach_[t[k]], r);
         }
     }
@@ -60,7 +59,7 @@ void RefineContext::touch(mesh::TetId t) {
 
 bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const {
     if (!is_surface_vertex(a) || !is_surface_vertex(b)) return false;
-    return surface_edges_.count(edge_key(a, b)) != 0;
+    return surface_edges_.find(edge_key(a, b)) != nullptr;
 }
 
 double RefineContext::edge_size(mesh::VertexId a, mesh::VertexId b) const {

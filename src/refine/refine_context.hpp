@@ -6,9 +6,9 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
 
+#include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
 #include "refine/refine_options.hpp"
@@ -76,7 +76,7 @@ private:
     std::vector<char> surface_vertex_;
     std::vector<double> reach_;  // per surface vertex: largest circumradius of its input triangles
     std::vector<char> movable_;
-    std::unordered_set<std::uint64_t> surface_edges_;
+    mesh::KeyTable<bool> surface_edges_;
 };
 
 }  // namespace cbr::refine
