@@ -255,12 +255,7 @@ std::size_t Refiner::point_cap() const {
         const double* a = m_.point(v[0]);
         double h = c_.size.at(v[0]);
         for (int i = 1; i < 4; ++i) h = std::min(h, c_.size.at(v[i]));
-        const double* q[3] = {m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
-        const double u[3] = {q[0][0] - a[0], q[0][1] - a[1], q[0][2] - a[2]};
-        const double s[3] = {q[1][0] - a[0], q[1][1] - a[1], q[1][2] - a[2]};
-        const double w[3] = {q[2][0] - a[0], q[2][1] - a[1], q[2][2] - a[2]};
-        const double six_v = std::fabs(u[0] * (s[1] * w[2] - s[2] * w[1]) - u[1] * (s[0] * w[2] - s[2] * w[0]) +
-                                       u[2] * (s[0] * w[1] - s[1] * w[0]));
+        const double six_v = six_volume(a, m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
         // regular tetrahedron of edge h: volume h^3 / (6 sqrt 2)
         ideal_tets += (six_v / 6) / (h * h * h / 8.48528137423857);
     }

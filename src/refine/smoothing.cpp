@@ -78,12 +78,7 @@ bool Smoother::odt_point(Point& out) const {
         const double* a = m_.point(w[0]);
         Point centre;
         if (!circumcentre(a, m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), centre)) continue;
-        const double* q[3] = {m_.point(w[1]), m_.point(w[2]), m_.point(w[3])};
-        const double u[3] = {q[0][0] - a[0], q[0][1] - a[1], q[0][2] - a[2]};
-        const double s[3] = {q[1][0] - a[0], q[1][1] - a[1], q[1][2] - a[2]};
-        const double x[3] = {q[2][0] - a[0], q[2][1] - a[1], q[2][2] - a[2]};
-        const double volume = std::fabs(u[0] * (s[1] * x[2] - s[2] * x[1]) - u[1] * (s[0] * x[2] - s[2] * x[0]) +
-                                        u[2] * (s[0] * x[1] - s[1] * x[0]));
+        const double volume = six_volume(a, m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
         for (int k = 0; k < 3; ++k) sum[k] += volume * centre[k];
         weight += volume;
     }

@@ -53,6 +53,14 @@ bool radius_ratio_of(const V& u, const V& v, const V& w, double& q) {
 
 }  // namespace
 
+double six_volume(const double* a, const double* b, const double* c, const double* d) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double s[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    return std::fabs(u[0] * (s[1] * w[2] - s[2] * w[1]) - u[1] * (s[0] * w[2] - s[2] * w[0]) +
+                     u[2] * (s[0] * w[1] - s[1] * w[0]));
+}
+
 // q is scale-free: the raw edges first (the common case, no scaling
 // needed), the edges scaled to a unit longest edge when a product leaves
 // the range of double.

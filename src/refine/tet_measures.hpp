@@ -12,6 +12,10 @@ namespace cbr::refine {
 
 using Point = std::array<double, 3>;
 
+// |det[b - a, c - a, d - a]|: six times the volume of abcd, in doubles (a
+// measure for weights and counts, not an orientation test).
+double six_volume(const double* a, const double* b, const double* c, const double* d);
+
 // Radius ratio q = 3 r_in / r_circ: 1 for the regular tetrahedron, 0 for a
 // flat one (the paper's Table II measure). Orientation-blind (uses |volume|);
 // from the raw edges, or after scaling to unit longest edge when their
