@@ -265,8 +265,14 @@ private:
             const TetId s = shell_.tets[i];
             const int f = mesh::vertex_index(m_, s, shell_.ring[(i + 1) % shell_.size()]);
             const mesh::FacetRef across = m_.neighbor(s, f);
-            m_.set_constrained(s, f, true);
-            m_.set_constrained(mesh::facet_tet(across), mesh::facet_face(across), true);
+            if (!m_.is_constrained(s, f)) {
+                m_.set_constrained(s, f, true);
+                m_.set_constrained(mesh::facet_tet(across), mesh::facet_face(across), true);
+                // A mark is a change too: a rollback copy taken before it
+                // must not come back over it (a face recovered without a
+                // flip, then another face rolled back).
+                set_state(++last_state_);
+            }
             return true;
         }
         return false;
