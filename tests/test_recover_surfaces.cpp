@@ -29,7 +29,8 @@ const std::set<std::string> kRecovered = {
     "common3d-rocker-arm", "common3d-spot", "nonmanifold-edge-two-tets", "nonmanifold-vertex-hourglass",
     "thingi10k-100071", "thingi10k-37322", "thingicsg-openscad-example012", "thingicsg-openscad-example016",
     "thingicsg-cylinder", "thingicsg-sprocket-small", "thingicsg-sprocket", "thingicsg-t1-torus-quads",
-    "thingiverse-bird", "thingiverse-chain-link", "thingiverse-feeder-guide-arm", "thingiverse-golf-ball",
+    "thingiverse-bird", "thingiverse-chain-link", "thingiverse-feeder-body", "thingiverse-feeder-guide-arm",
+    "thingiverse-golf-ball",
     "thingiverse-mouth", "wildmeshing-armadillo", "wildmeshing-blub", "wildmeshing-csg-ball", "wildmeshing-csg-x", "wildmeshing-octocat",
     "wildmeshing-sphere", "wildmeshing-supershape", "wildmeshing-upsampled-box"};
 

@@ -1,8 +1,10 @@
 // Constrained boundary recovery (Du & Wang 2004, §5): the driver. Steps, in
-// order: find the missing faces; flips (§5.1); per remaining face,
-// conforming recovery then edge- and face-added-point splitting (§5.2-5.4);
-// Steiner suppression and repositioning (§6). A face that a step cannot
-// recover is reported, never hidden.
+// order: find the missing faces; flips (§5.1); where flips are blocked,
+// interior Steiner points off the surface and the flips again on those
+// faces (unblocking_points.hpp); per remaining face, conforming recovery
+// then edge- and face-added-point splitting (§5.2-5.4); Steiner suppression
+// and repositioning (§6). A face that a step cannot recover is reported,
+// never hidden.
 #pragma once
 
 #include <cstddef>
@@ -19,7 +21,7 @@ struct RecoveryStats {
     std::size_t missing_faces = 0;       // after Delaunay
     std::size_t recovered_by_flips = 0;
     std::size_t conforming_points = 0;   // added on the surface, then split off
-    std::size_t steiner_generated = 0;
+    std::size_t steiner_generated = 0;   // unblocking points, then split-off points
     std::size_t steiner_remaining = 0;
 };
 

@@ -1,0 +1,301 @@
+#include "recover/unblocking_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+#include <utility>
+
+#include "geom/intersect.hpp"
+#include "geom/point_in_triangle.hpp"
+#include "geom/predicates.hpp"
+#include "geom/triangle_distance.hpp"
+#include "mesh/ball_shell.hpp"
+#include "recover/protected_insertion.hpp"
+
+namespace cbr::recover {
+namespace {
+
+using mesh::kFaceVertices;
+using mesh::kGhostVertex;
+using mesh::kNoTet;
+using mesh::TetId;
+using mesh::VertexId;
+
+// Tetrahedra searched along one edge.
+constexpr std::size_t kMaxSearchedTets = std::size_t{1} << 16;
+// Points tried per missing edge: one per this many tetrahedra the edge
+// meets, at most kMaxPointsPerEdge, spread evenly along it.
+constexpr std::size_t kTetsPerPoint = 8;
+constexpr std::size_t kMaxPointsPerEdge = 8;
+// Offsets from the edge: from a quarter of its length, halved down to this
+// fraction of the face's shortest edge, which is also the least distance
+// kept from every missing triangle (a point nearer the surface makes the
+// thin tetrahedra that later steps must then split around).
+constexpr double kClearance = 0.1;
+// Steps of the walk to a point.
+constexpr int kMaxWalk = 10000;
+// A point whose star is larger is not kept: it would stay a Steiner point
+// that §6 suppression tries at a cost that grows with the cube of its ball
+// (a flat fanned cylinder: one point coned to all 796 faces, 8 s where the
+// whole recovery took 0.9).
+constexpr std::size_t kMaxStar = 256;
+
+double dot(const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+
+void centroid(const mesh::TetMesh& m, TetId t, double out[3]) {
+    out[0] = out[1] = out[2] = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) out[k] += 0.25 * m.point(m.vertex(t, i))[k];
+}
+
+bool strictly_inside(const mesh::TetMesh& m, TetId t, const double* p) {
+    const VertexId* v = m.vertices(t);
+    for (int f = 0; f < 4; ++f) {
+        const int* k = kFaceVertices[f];
+        if (geom::orient3d(m.point(v[k[0]]), m.point(v[k[1]]), m.point(v[k[2]]), p) <= 0) return false;
+    }
+    return true;
+}
+
+// Unit normal of triangle t (rounded) and its shortest edge's length.
+void normal_and_scale(const mesh::TetMesh& m, const Triangle& t, double n[3], double& scale) {
+    const double* a = m.point(t[0]);
+    const double* b = m.point(t[1]);
+    const double* c = m.point(t[2]);
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+        w[k] = c[k] - b[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    const double l = std::sqrt(dot(n, n));
+    for (int k = 0; k < 3; ++k) n[k] /= l;
+    scale = std::sqrt(std::min({dot(u, u), dot(v, v), dot(w, w)}));
+}
+
+class Unblocker {
+public:
+    Unblocker(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing)
+        : m_(m), faces_(faces), missing_(missing), incident_(mesh::incident_tets(m)) {}
+
+    std::size_t run(std::vector<VertexId>& steiner) {
+        const std::size_t before = steiner.size();
+        for (std::size_t f : missing_) {
+            const Triangle& t = faces_.triangle(f);
+            for (int k = 0; k < 3; ++k) unblock_edge(t, t[k], t[(k + 1) % 3], steiner);
+        }
+        return steiner.size() - before;
+    }
+
+private:
+    struct Met {
+        double d2;  // squared distance of the centroid from the target point
+        TetId tet;
+    };
+
+    bool edge_exists(VertexId a, VertexId b) const { return mesh::find_edge_tet(m_, a, incident_[a], b) != kNoTet; }
+
+    // The finite tetrahedra the closed segment ab meets other than at a or b
+    // (from a's ball outwards, never across a constraint face), nearest
+    // `target` first.
+    std::vector<Met> met_tets(VertexId a, VertexId b, const double* target) {
+        const double* pa = m_.point(a);
+        const double* pb = m_.point(b);
+        std::vector<Met> out;
+        std::vector<TetId> near;
+        if (!mesh::ball(m_, a, incident_[a], near)) return out;
+        std::unordered_set<TetId> seen(near.begin(), near.end());
+        for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
+            const TetId t = near[i];
+            if (m_.is_ghost(t)) continue;
+            const VertexId* v = m_.vertices(t);
+            bool met = false;
+            for (int f = 0; f < 4; ++f) {
+                const int* k = kFaceVertices[f];
+                const geom::SegTriKind kind =
+                    geom::classify_segment_triangle(pa, pb, m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]))
+                        .kind;
+                if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
+                met = true;
+                if (m_.is_constrained(t, f)) continue;
+                const TetId n = mesh::facet_tet(m_.neighbor(t, f));
+                if (seen.insert(n).second) near.push_back(n);
+            }
+            if (!met) continue;
+            double c[3];
+            centroid(m_, t, c);
+            const double d[3] = {c[0] - target[0], c[1] - target[1], c[2] - target[2]};
+            out.push_back({dot(d, d), t});
+        }
+        std::sort(out.begin(), out.end(), [](const Met& x, const Met& y) { return x.d2 < y.d2; });
+        return out;
+    }
+
+    std::size_t met_count(VertexId a, VertexId b) {
+        if (edge_exists(a, b)) return 0;
+        const double* pa = m_.point(a);
+        return met_tets(a, b, pa).size();
+    }
+
+    // Points off face `tri` near its missing edge ab; see the header.
+    void unblock_edge(const Triangle& tri, VertexId a, VertexId b, std::vector<VertexId>& steiner) {
+        if (edge_exists(a, b)) return;
+        double pa[3], pb[3], n[3], scale = 0;
+        std::copy_n(m_.point(a), 3, pa);
+        std::copy_n(m_.point(b), 3, pb);
+        normal_and_scale(m_, tri, n, scale);
+        const double mid[3] = {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2])};
+        const std::vector<Met> met = met_tets(a, b, mid);
+        std::size_t count = met.size();
+        if (count == 0) return;
+        // The side of the face most of the crossed tetrahedra lie on first.
+        double side = 0;
+        for (const Met& x : met) {
+            double c[3];
+            centroid(m_, x.tet, c);
+            const double d[3] = {c[0] - pa[0], c[1] - pa[1], c[2] - pa[2]};
+            side += dot(d, n);
+        }
+        const double first = side >= 0 ? 1.0 : -1.0;
+        const double ab[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+        const double length = std::sqrt(dot(ab, ab));
+        const std::size_t targets = std::clamp<std::size_t>(count / kTetsPerPoint, 1, kMaxPointsPerEdge);
+        saved_ = false;
+        for (std::size_t i = 0; i < targets && count > 0; ++i) {
+            const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
+            const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
+            bool kept = false;
+            for (double d = length / 4; d >= kClearance * scale && !kept; d /= 2)
+                for (const double dir : {first, -first}) {
+                    const double p[3] = {on_edge[0] + dir * d * n[0], on_edge[1] + dir * d * n[1],
+                                         on_edge[2] + dir * d * n[2]};
+                    if (try_point(a, b, on_edge, p, kClearance * scale, count, steiner)) {
+                        kept = true;
+                        break;
+                    }
+                }
+        }
+    }
+
+    // Inserts p if it passes the tests and ab then meets fewer than `count`
+    // tetrahedra (count updated); otherwise leaves the mesh as it was.
+    bool try_point(VertexId a, VertexId b, const double* target, const double* p, double clearance,
+                   std::size_t& count, std::vector<VertexId>& steiner) {
+        const std::vector<Met> met = met_tets(a, b, target);
+        if (met.empty()) return false;
+        const TetId at = walk(met.front().tet, p);
+        if (at == kNoTet || near_missing_face(p, clearance) || !conflicts_reach(at, p, met)) return false;
+        if (!saved_) {  // one copy per edge, taken before its first change
+            saved_mesh_ = m_;
+            saved_incident_ = incident_;
+            saved_ = true;
+        }
+        std::size_t star = 0;
+        if (!insert(at, p, steiner, star)) return false;
+        const std::size_t after = met_count(a, b);
+        if (after < count && star <= kMaxStar) {
+            count = after;
+            saved_ = false;
+            return true;
+        }
+        m_ = saved_mesh_;
+        incident_ = saved_incident_;
+        steiner.pop_back();
+        return false;
+    }
+
+    // The finite tetrahedra whose circumspheres hold p, connected to `at`
+    // across faces that are not constraint faces (the Delaunay cavity
+    // before its correction), include one that ab meets: else p cannot
+    // remove a crossing, and is not worth an insertion and a rollback.
+    bool conflicts_reach(TetId at, const double* p, const std::vector<Met>& met) {
+        std::unordered_set<TetId> wanted;
+        for (const Met& x : met) wanted.insert(x.tet);
+        std::vector<TetId> stack{at};
+        std::unordered_set<TetId> seen{at};
+        while (!stack.empty() && seen.size() < kMaxSearchedTets) {
+            const TetId t = stack.back();
+            stack.pop_back();
+            if (wanted.count(t)) return true;
+            for (int f = 0; f < 4; ++f) {
+                const TetId n = mesh::facet_tet(m_.neighbor(t, f));
+                if (m_.is_constrained(t, f) || m_.is_ghost(n) || !seen.insert(n).second) continue;
+                const VertexId* v = m_.vertices(n);
+                if (geom::insphere_sos(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), p) > 0)
+                    stack.push_back(n);
+            }
+        }
+        return false;
+    }
+
+    // Visibility walk from t towards p that never crosses a constraint face
+    // nor leaves the hull: the tetrahedron that holds p strictly inside, or
+    // kNoTet (p on a face of the mesh, behind the surface, or lost).
+    TetId walk(TetId t, const double* p) const {
+        for (int step = 0; step < kMaxWalk; ++step) {
+            const VertexId* v = m_.vertices(t);
+            int exit = -1;
+            for (int f = 0; f < 4 && exit < 0; ++f) {
+                const int* k = kFaceVertices[f];
+                if (geom::orient3d(m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]), p) < 0) exit = f;
+            }
+            if (exit < 0) return strictly_inside(m_, t, p) ? t : kNoTet;
+            if (m_.is_constrained(t, exit)) return kNoTet;
+            t = mesh::facet_tet(m_.neighbor(t, exit));
+            if (m_.is_ghost(t)) return kNoTet;
+        }
+        return kNoTet;
+    }
+
+    // p on a missing triangle (exact), or nearer one than `clearance`. The
+    // recovered triangles are mesh faces: p strictly inside a tetrahedron is
+    // on none of them.
+    bool near_missing_face(const double* p, double clearance) const {
+        for (std::size_t f : missing_) {
+            const Triangle& t = faces_.triangle(f);
+            const double* a = m_.point(t[0]);
+            const double* b = m_.point(t[1]);
+            const double* c = m_.point(t[2]);
+            if (geom::point_in_triangle(p, a, b, c) || geom::distance2_to_triangle(p, a, b, c) < clearance * clearance)
+                return true;
+        }
+        return false;
+    }
+
+    bool insert(TetId t, const double* xyz, std::vector<VertexId>& steiner, std::size_t& star) {
+        const VertexId p = m_.add_points(xyz, 1);
+        const ProtectedInsertResult& r = inserter_.insert(m_, p, t);
+        if (!r.ok) {
+            m_.truncate_vertices(p);
+            return false;
+        }
+        star = r.created.size();
+        if (incident_.size() <= p) incident_.resize(std::size_t{p} + 1, kNoTet);
+        for (TetId s : r.created)
+            for (int i = 0; i < 4; ++i)
+                if (m_.vertex(s, i) != kGhostVertex) incident_[m_.vertex(s, i)] = s;
+        steiner.push_back(p);
+        return true;
+    }
+
+    mesh::TetMesh& m_;
+    const ConstraintFaces& faces_;
+    const std::vector<std::size_t>& missing_;
+    std::vector<TetId> incident_;
+    ProtectedInserter inserter_;
+    bool saved_ = false;
+    mesh::TetMesh saved_mesh_;
+    std::vector<TetId> saved_incident_;
+};
+
+}  // namespace
+
+std::size_t insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                     const std::vector<std::size_t>& missing, std::vector<VertexId>& steiner) {
+    return Unblocker(m, faces, missing).run(steiner);
+}
+
+}  // namespace cbr::recover

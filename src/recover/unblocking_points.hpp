@@ -1,0 +1,35 @@
+// Interior Steiner points that unblock flips, between the flips (§5.1) and
+// conforming recovery (§5.2). A Steiner point strictly off the surface is
+// legal anywhere (inside or outside the domain): only points on input
+// triangles are forbidden. So where a missing edge of a face that flips
+// could not recover crosses many tetrahedra, a point put near the edge but
+// off the surface, inserted with the protected Delaunay cavity (§5.1: no
+// recovered face is ever crossed), replaces the crossed tetrahedra whose
+// circumspheres hold it by its star; the flips are then tried again on
+// those faces, and only what is still missing goes on to conforming
+// recovery. The points go to the Steiner list, so §6 tries to suppress
+// them like the others (TetGen, too, puts Steiner points in the interior
+// to unblock flips).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "recover/constraint_faces.hpp"
+
+namespace cbr::recover {
+
+// For every missing edge of the faces `missing` (indices into `faces`):
+// points at decreasing distances from points of the edge along the face's
+// normal, the side of the crossed tetrahedra first. A point is inserted only
+// when it is strictly inside the tetrahedron the walk to it ends in (so on
+// no face of the mesh, recovered faces included), on no missing triangle
+// (exact) and not nearer one than a tenth of the face's shortest edge; it
+// is kept only when the edge then meets fewer tetrahedra and its star is
+// not huge (else the mesh is restored as it was). Appends the points kept to `steiner`, in increasing
+// id order; returns their number.
+std::size_t insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                     const std::vector<std::size_t>& missing, std::vector<mesh::VertexId>& steiner);
+
+}  // namespace cbr::recover
