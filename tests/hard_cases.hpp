@@ -156,6 +156,33 @@ class SurfaceBuilder {
     std::map<Vec, std::int64_t> ids_;
 };
 
+// Schonhardt-type prisms stacked: `triangle_levels` triangles of radius
+// `radius` (z = 0, 1, ...), each turned by `twist` from the one below, the
+// lateral quadrilaterals split along the reflex diagonals. The bottom and
+// top triangles are faces; with `shared_levels` the ones between are too
+// (their edges then have three triangles: one region per prism). Triangle
+// order: the bottom, then per prism its six laterals followed by its upper
+// triangle when that is a face. Schonhardt's prism: (2, 30 degrees, false).
+inline Polyhedron twisted_prisms(int triangle_levels, double twist, bool shared_levels, double radius = 1.0) {
+    const double pi = 3.14159265358979323846;
+    Polyhedron p;
+    for (int level = 0; level < triangle_levels; ++level)
+        for (int i = 0; i < 3; ++i) {
+            const double a = 2 * pi * i / 3 + level * twist;
+            p.xyz.insert(p.xyz.end(), {radius * std::cos(a), radius * std::sin(a), double(level)});
+        }
+    p.tris = {0, 2, 1};
+    for (int level = 0; level + 1 < triangle_levels; ++level) {
+        const int b = 3 * level, u = 3 * (level + 1);
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3;
+            p.tris.insert(p.tris.end(), {b + i, b + j, u + j, b + i, u + j, u + i});
+        }
+        if (shared_levels || level + 2 == triangle_levels) p.tris.insert(p.tris.end(), {u, u + 1, u + 2});
+    }
+    return p;
+}
+
 // Three Schonhardt prisms stacked: level L (z = L, 0..3) is the triangle of
 // radius 1 turned by L * 30 degrees, each prism joins two levels with the
 // twisted diagonals of schonhardt_prism(). The triangles of levels 1 and 2

@@ -381,28 +381,8 @@ SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
     return st;
 }
 
-// Schonhardt-type prism: `levels` triangles stacked, each turned by `twist`
-// from the one below, the lateral quads split by the reflex diagonals; the
-// intermediate triangles are faces too (then their edges have three
-// triangles).
-cbr::test::Polyhedron twisted_stack(int levels, double twist) {
-    cbr::test::Polyhedron p;
-    for (int level = 0; level < levels; ++level)
-        for (int i = 0; i < 3; ++i) {
-            const double a = 2 * kPi * i / 3 + level * twist;
-            p.xyz.insert(p.xyz.end(), {std::cos(a), std::sin(a), double(level)});
-        }
-    p.tris = {0, 2, 1};
-    for (int level = 0; level + 1 < levels; ++level) {
-        const int b = 3 * level, u = 3 * (level + 1);
-        for (int i = 0; i < 3; ++i) {
-            const int j = (i + 1) % 3;
-            p.tris.insert(p.tris.end(), {b + i, b + j, u + j, b + i, u + j, u + i});
-        }
-        p.tris.insert(p.tris.end(), {u, u + 1, u + 2});
-    }
-    return p;
-}
+// `levels` triangles stacked, the ones between top and bottom faces too.
+cbr::test::Polyhedron twisted_stack(int levels, double twist) { return cbr::test::twisted_prisms(levels, twist, true); }
 
 // The prism turned by an arbitrary rotation, scaled and moved: every
 // coordinate rounded.

@@ -17,6 +17,7 @@
 #include "recover/flip_recovery.hpp"
 #include "recover/recovery.hpp"
 #include "recover/unblocking_points.hpp"
+#include "hard_cases.hpp"
 #include "test_util.hpp"
 
 using cbr::mesh::TetMesh;
@@ -28,25 +29,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// `levels` + 1 triangles turned by `twist` from one level to the next,
-// joined by quadrilaterals split along the reflex diagonals (Schonhardt's
-// prism when levels = 1 and twist = 30 degrees); closed and outward.
+// `levels` prisms (Schonhardt's when levels = 1 and twist = 30 degrees),
+// only the bottom and top triangles between them faces.
 cbr::test::Polyhedron twisted_prism(int levels, double twist, double radius = 1.0) {
-    cbr::test::Polyhedron p;
-    for (int level = 0; level <= levels; ++level)
-        for (int i = 0; i < 3; ++i) {
-            const double a = 2 * kPi * i / 3 + level * twist;
-            p.xyz.insert(p.xyz.end(), {radius * std::cos(a), radius * std::sin(a), double(level)});
-        }
-    p.tris = {0, 2, 1};
-    for (int level = 0; level < levels; ++level)
-        for (int i = 0; i < 3; ++i) {
-            const int j = (i + 1) % 3, b = 3 * level, t = 3 * (level + 1);
-            p.tris.insert(p.tris.end(), {b + i, b + j, t + j, b + i, t + j, t + i});
-        }
-    const int top = 3 * levels;
-    p.tris.insert(p.tris.end(), {top, top + 1, top + 2});
-    return p;
+    return cbr::test::twisted_prisms(levels + 1, twist, false, radius);
 }
 
 struct Built {

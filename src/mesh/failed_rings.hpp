@@ -46,7 +46,6 @@ public:
 
     bool contains(std::uint64_t key) const { return failed_.find(key) != nullptr; }
     void insert(std::uint64_t key) { failed_[key] = true; }
-    std::size_t size() const { return failed_.size(); }
 
 private:
     static constexpr std::uint64_t kSeed = 0x9E3779B97F4A7C15ull;
