@@ -324,6 +324,32 @@ TEST_CASE("orient3d: two equal points give 0, whichever two") {
     CHECK(orient3d(zero, x, y, negative_zero) == 0);
 }
 
+TEST_CASE("orient3d: four points on an axis-parallel plane give 0, one ulp off the plane does not") {
+    // The exact stage answers a shared coordinate without its expansions
+    // (the flat faces of CAD parts, like the feeder body's caps at
+    // z = 4.5001893): non-dyadic coordinates, so that nothing else in the
+    // exact stage is exact in doubles.
+    Rng rng(13);
+    int nonzero = 0;
+    for (int n = 0; n < 300; ++n) {
+        const double s = std::ldexp(1.0, rng.integer(-20, 20));
+        const double level = rng.uniform(-s, s);
+        const int axis = rng.integer(0, 2);
+        Point p[4];
+        for (Point& q : p) {
+            q = rng.point(-s, s);
+            q[static_cast<std::size_t>(axis)] = level;
+        }
+        CHECK(orient3d(p[0], p[1], p[2], p[3]) == 0);
+        CHECK(cbr::geom::detail::orient3d_exact(p[0].data(), p[1].data(), p[2].data(), p[3].data(), nullptr) == 0);
+        const int moved = rng.integer(0, 3);
+        p[moved] = nudged(p[moved], axis, rng.integer(0, 1) ? 1 : -1);
+        check_orient3d(p[0], p[1], p[2], p[3]);
+        nonzero += ref_orient3d(p[0], p[1], p[2], p[3]) != 0;
+    }
+    CHECK(nonzero == 300);  // off the plane is off it (unless abc were collinear)
+}
+
 TEST_CASE("orient3d: integer and dyadic points (the exact stage in doubles, and its way out)") {
     // Up to 2^12 every step of the determinant is exact in doubles; up to
     // 2^26 the minors are but their products by z need not be, and the

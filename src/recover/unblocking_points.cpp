@@ -79,7 +79,18 @@ void normal_and_scale(const mesh::TetMesh& m, const Triangle& t, double n[3], do
 class Unblocker {
 public:
     Unblocker(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing)
-        : m_(m), faces_(faces), missing_(missing), incident_(mesh::incident_tets(m)) {}
+        : m_(m), faces_(faces), missing_(missing), incident_(mesh::incident_tets(m)) {
+        boxes_.reserve(missing_.size());
+        for (std::size_t f : missing_) {
+            const Triangle& t = faces_.triangle(f);
+            Box b;
+            for (int k = 0; k < 3; ++k) {
+                b.lo[k] = std::min({m_.point(t[0])[k], m_.point(t[1])[k], m_.point(t[2])[k]});
+                b.hi[k] = std::max({m_.point(t[0])[k], m_.point(t[1])[k], m_.point(t[2])[k]});
+            }
+            boxes_.push_back(b);
+        }
+    }
 
     std::size_t run(std::vector<VertexId>& steiner) {
         const std::size_t before = steiner.size();
@@ -91,6 +102,14 @@ public:
     }
 
 private:
+    struct Box {
+        double lo[3], hi[3];
+        bool apart(const double* p, double margin) const {
+            for (int k = 0; k < 3; ++k)
+                if (p[k] < lo[k] - margin || p[k] > hi[k] + margin) return true;
+            return false;
+        }
+    };
     struct Met {
         double d2;  // squared distance of the centroid from the target point
         TetId tet;
@@ -254,8 +273,11 @@ private:
     // recovered triangles are mesh faces: p strictly inside a tetrahedron is
     // on none of them.
     bool near_missing_face(const double* p, double clearance) const {
-        for (std::size_t f : missing_) {
-            const Triangle& t = faces_.triangle(f);
+        for (std::size_t i = 0; i < missing_.size(); ++i) {
+            // Farther than twice the clearance from the triangle's box: not
+            // on it, and not near it even with the distance rounded.
+            if (boxes_[i].apart(p, 2 * clearance)) continue;
+            const Triangle& t = faces_.triangle(missing_[i]);
             const double* a = m_.point(t[0]);
             const double* b = m_.point(t[1]);
             const double* c = m_.point(t[2]);
@@ -284,6 +306,7 @@ private:
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
     const std::vector<std::size_t>& missing_;
+    std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
     ProtectedInserter inserter_;
     bool saved_ = false;
