@@ -47,7 +47,9 @@ using cbr::recover::ConstraintFaces;
 using cbr::recover::PointSplitting;
 using cbr::recover::SurfacePoints;
 using cbr::recover::Triangle;
+using cbr::recover::kMaxOptimalPolygon;
 using cbr::recover::triangulate_polygon;
+using cbr::recover::triangulate_polygon_by_ears;
 
 namespace {
 
@@ -601,8 +603,44 @@ TEST_CASE("triangulate_polygon: every simple polygon on a small integer grid (co
         check_triangulation(loop, +1, triangulate_polygon(ptrs(loop), pr, +1));
         std::vector<P2> rev(loop.rbegin(), loop.rend());
         check_triangulation(rev, -1, triangulate_polygon(ptrs(rev), pr, -1));
+        // Ear clipping (the large polygons' method) on the same polygons.
+        check_triangulation(loop, +1, triangulate_polygon_by_ears(ptrs(loop), pr, +1));
+        check_triangulation(rev, -1, triangulate_polygon_by_ears(ptrs(rev), pr, -1));
     }
     CHECK(simple_count == 3000);
+}
+
+TEST_CASE("triangulate_polygon: large fans go to ear clipping, which keeps every condition") {
+    // Star-shaped loops around the origin like the fans of the feeder
+    // body's added points (up to 922 vertices), with every rotation of the
+    // start for a small one; and the flat triangles of a chain left out.
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    for (const int n : {5, 12, kMaxOptimalPolygon + 1, 200, 900}) {
+        std::vector<P2> loop;
+        for (int i = 0; i < n; ++i) {
+            const double a = 2 * kPi * (i + 0.4 * U(rng)) / n;
+            const double r = 0.2 + 3 * U(rng);
+            loop.push_back({r * std::cos(a), r * std::sin(a), 0.0});
+        }
+        INFO("n " << n);
+        const int rotations = n <= 12 ? n : 1;
+        for (int rot = 0; rot < rotations; ++rot) {
+            std::vector<P2> turned(loop.begin() + rot, loop.end());
+            turned.insert(turned.end(), loop.begin(), loop.begin() + rot);
+            check_triangulation(turned, +1, triangulate_polygon_by_ears(ptrs(turned), Projection{0, 1}, +1));
+            std::vector<P2> rev(turned.rbegin(), turned.rend());
+            check_triangulation(rev, -1, triangulate_polygon_by_ears(ptrs(rev), Projection{0, 1}, -1));
+        }
+        check_triangulation(loop, +1, triangulate_polygon(ptrs(loop), Projection{0, 1}, +1));
+        CHECK(triangulate_polygon_by_ears(ptrs(loop), Projection{0, 1}, -1).empty());  // the wrong turn
+    }
+    const std::vector<P2> chain = {P2{0, 0, 0}, P2{1, -1e-12, 0}, P2{2, 0, 0}, P2{3, 0, 0}, P2{1.5, 0.001, 0}};
+    const auto on_chain = [](int i, int j, int k) { return i < 4 && j < 4 && k < 4; };
+    const auto tris = triangulate_polygon_by_ears(ptrs(chain), Projection{0, 1}, +1, on_chain);
+    check_triangulation(chain, +1, tris);
+    for (const auto& t : tris) CHECK_FALSE(on_chain(t[0], t[1], t[2]));
+    CHECK(triangulate_polygon_by_ears(ptrs(chain), Projection{0, 1}, +1, [](int, int, int) { return true; }).empty());
 }
 
 TEST_CASE("triangulate_polygon: folded, self-crossing and degenerate loops have none") {

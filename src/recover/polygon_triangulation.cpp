@@ -56,10 +56,85 @@ bool chord_is_clear(const std::vector<const double*>& loop, geom::Projection pr,
 
 }  // namespace
 
+std::vector<std::array<int, 3>> triangulate_polygon_by_ears(const std::vector<const double*>& loop,
+                                                            geom::Projection pr, int turn, const FlatTriangle& flat) {
+    const int n = static_cast<int>(loop.size());
+    if (n < 3) return {};
+    std::vector<int> prev(n), next(n);
+    for (int i = 0; i < n; ++i) {
+        prev[i] = (i + n - 1) % n;
+        next[i] = (i + 1) % n;
+    }
+    // Quality of the ear at c, or a negative value when c is not an ear of
+    // the polygon left (whose first vertex is `start`).
+    int start = 0;
+    const auto ear = [&](int c) {
+        const int p = prev[c], q = next[c];
+        const double *a = loop[p], *b = loop[c], *d = loop[q];
+        if (turn * geom::orient2d(pr, a, b, d) <= 0) return -1.0;
+        int sorted[3] = {p, c, q};
+        std::sort(sorted, sorted + 3);
+        if (flat && flat(sorted[0], sorted[1], sorted[2])) return -1.0;
+        int x = start;
+        do {
+            if (x != p && x != c && x != q && turn * geom::orient2d(pr, a, b, loop[x]) >= 0 &&
+                turn * geom::orient2d(pr, b, d, loop[x]) >= 0 && turn * geom::orient2d(pr, d, a, loop[x]) >= 0)
+                return -1.0;
+            x = next[x];
+        } while (x != start);
+        return triangle_quality(a, b, d);
+    };
+    std::vector<double> quality(n);
+    for (int i = 0; i < n; ++i) quality[i] = ear(i);
+    std::vector<std::array<int, 3>> out;
+    const auto best_ear = [&] {  // ties to the first from `start`, so the result is deterministic
+        int best = -1;
+        int x = start;
+        do {
+            if (quality[x] >= 0 && (best < 0 || quality[x] > quality[best])) best = x;
+            x = next[x];
+        } while (x != start);
+        return best;
+    };
+    for (int left = n; left > 3; --left) {
+        int best = best_ear();
+        if (best < 0) {
+            // Only the cut ears' neighbours were looked at again: a corner
+            // whose triangle held a cut vertex may have become an ear.
+            int x = start;
+            do {
+                quality[x] = ear(x);
+                x = next[x];
+            } while (x != start);
+            best = best_ear();
+            if (best < 0) return {};
+        }
+        std::array<int, 3> t = {prev[best], best, next[best]};
+        std::sort(t.begin(), t.end());
+        out.push_back(t);
+        const int p = prev[best], q = next[best];
+        next[p] = q;
+        prev[q] = p;
+        if (start == best) start = q;
+        // Cutting an ear changes the triangles of its neighbours; the other
+        // ears keep theirs and stay ears (a vertex fewer can only help).
+        quality[p] = ear(p);
+        quality[q] = ear(q);
+    }
+    std::array<int, 3> t = {prev[start], start, next[start]};
+    std::sort(t.begin(), t.end());
+    if (turn * geom::orient2d(pr, loop[prev[start]], loop[start], loop[next[start]]) <= 0 ||
+        (flat && flat(t[0], t[1], t[2])))
+        return {};
+    out.push_back(t);
+    return out;
+}
+
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
                                                     int turn, const FlatTriangle& flat) {
     const int n = static_cast<int>(loop.size());
     if (n < 3) return {};
+    if (n > kMaxOptimalPolygon) return triangulate_polygon_by_ears(loop, pr, turn, flat);
     // A chord ij may be a side of a triangle when it is a polygon edge, or
     // when it crosses no polygon edge and passes through no vertex
     // (memoized: each chord is asked about by many triangles).

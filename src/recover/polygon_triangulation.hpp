@@ -19,13 +19,30 @@ namespace cbr::recover {
 // decided exactly), returns one that maximizes the smallest triangle
 // quality (dynamic programming over the polygon; O(n^3), chords
 // memoized, so the 200-gons of a fanned CAD cap take milliseconds, not
-// seconds). Triangles are index
-// triples (i < j < k), which follow the loop's turn. Empty when there is
-// none (e.g. the projection folds the polygon). `flat`, when given, names
-// triangles to leave out whatever their sign: corners known to be
-// collinear in exact geometry, whose computed sign is only rounding.
+// seconds). Above kMaxOptimalPolygon vertices, the greedy ear clipping
+// below instead. Triangles are index triples (i < j < k), which follow the
+// loop's turn. Empty when there is none (e.g. the projection folds the
+// polygon). `flat`, when given, names triangles to leave out whatever
+// their sign: corners known to be collinear in exact geometry, whose
+// computed sign is only rounding.
 using FlatTriangle = std::function<bool(int, int, int)>;
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
                                                     int turn, const FlatTriangle& flat = {});
+
+// Polygons up to this size get the optimal triangulation; the feeder
+// body's conforming recovery made fans of up to 922 vertices, whose
+// O(n^3) search took most of a 40-second recovery.
+inline constexpr int kMaxOptimalPolygon = 64;
+
+// The same triangles' conditions, met by ear clipping in O(n^2): the ear
+// (corner with both neighbours) of best quality is cut first, where an
+// ear is a strictly convex corner (sign `turn`), not `flat`, whose closed
+// triangle holds no other vertex of the polygon left; in a simple polygon
+// its new side is then a diagonal. The polygon must be simple (the fan of
+// an added point is: star-shaped around the point); empty when no ear is
+// left before the end (only `flat` can do that to a simple polygon).
+std::vector<std::array<int, 3>> triangulate_polygon_by_ears(const std::vector<const double*>& loop,
+                                                            geom::Projection pr, int turn,
+                                                            const FlatTriangle& flat = {});
 
 }  // namespace cbr::recover
