@@ -84,7 +84,7 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
         const auto result =
-            cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats);
+            cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats, mesh->recovery_options);
         if (!result.ok) {
             mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).

@@ -48,6 +48,7 @@ struct cbr_mesh {
     int index_base = 0;
     bool keep_exterior = false;
     double delaunay_seconds = 0;
+    cbr::recover::RecoveryOptions recovery_options;
     cbr::capi::RecoveryState recovery;
     cbr::refine::RefineOptions refine_options;
     cbr::capi::RefineState refine;

@@ -206,3 +206,29 @@ TEST_CASE("CBR_STAT_STEINER_INSIDE counts the Steiner points of the bounded regi
     CHECK(used(all, regions, true) == inside);
     CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) == inside);  // independent of the parameter
 }
+
+TEST_CASE("CBR_PARAM_RECOVERY_DEEP_FLIPS: on by default; off, flips leave what the deepest round recovers") {
+    const cbr::test::Polyhedron chazelle = cbr::test::chazelle_polyhedron();
+    const auto left_by_flips = [&](int deep) {
+        Handle h;
+        double v = -1;
+        CHECK(cbr_mesh_get_param(h.m, CBR_PARAM_RECOVERY_DEEP_FLIPS, &v) == CBR_OK);
+        CHECK(v == 1);
+        CHECK(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_DEEP_FLIPS, 0.5) == CBR_ERR_INVALID_ARGUMENT);
+        CHECK(contains(h.error(), "CBR_PARAM_RECOVERY_DEEP_FLIPS must be 0 or 1"));
+        REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_DEEP_FLIPS, deep) == CBR_OK);
+        CHECK(cbr_mesh_get_param(h.m, CBR_PARAM_RECOVERY_DEEP_FLIPS, &v) == CBR_OK);
+        CHECK(v == deep);
+        REQUIRE(cbr_mesh_insert_points(h.m, static_cast<std::int64_t>(chazelle.xyz.size() / 3), chazelle.xyz.data()) ==
+                CBR_OK);
+        // Recovered either way.
+        REQUIRE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(chazelle.tris.size() / 3), chazelle.tris.data(),
+                                       nullptr) == CBR_OK);
+        double missing = 0, flips = 0;
+        CHECK(cbr_mesh_get_stat(h.m, CBR_STAT_MISSING_FACES, &missing) == CBR_OK);
+        CHECK(cbr_mesh_get_stat(h.m, CBR_STAT_FACES_RECOVERED_BY_FLIPS, &flips) == CBR_OK);
+        return missing - flips;  // faces flips alone left
+    };
+    CHECK(left_by_flips(1) == 0);
+    CHECK(left_by_flips(0) > 0);
+}

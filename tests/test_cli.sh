@@ -175,6 +175,11 @@ run_local_outputs() {
     cp "$tmp/tet.off" "$tmp/$odd"
     expect 0 "" recover -q "$tmp/$odd" -o "$tmp/odd.mesh" --json "$tmp/odd.json"
     json_has "$tmp/odd.json" 'd["input"].endswith("we\"ird\t\ufffd.off")'
+    # --no-deep-flips (CBR_PARAM_RECOVERY_DEEP_FLIPS = 0; its effect is
+    # tested in test_capi_recover): accepted by recover and mesh, in the help.
+    expect 0 "" recover --help && report_has "--no-deep-flips  skip the deepest flip searches"
+    expect 0 "" mesh --help && report_has "--no-deep-flips  skip the deepest flip searches of recovery"
+    expect 0 "" recover --no-deep-flips "$tmp/cube.off" -o "$tmp/cube-shallow.mesh" && report_has "Table I"
     # An open surface with --allow-open alone: no tetrahedron, no quality.
     expect 0 "" recover --allow-open "$tmp/open.off" -o "$tmp/open.vtu" --json "$tmp/open.json" &&
         report_has "average quality +-$" && report_has "minimum dihedral angle +-$"

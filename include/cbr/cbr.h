@@ -132,6 +132,13 @@ extern "C" {
    surface's resolution. Default 0.3 (about 1.3x the tetrahedra of TetGen
    -pYq1.414 on the benchmark surfaces); range [0, 100]. */
 #define CBR_PARAM_REFINE_GROWTH 8
+/* Option of cbr_mesh_recover_faces: 1 (default) = before any Steiner point
+   is added, flip searches go to their deepest round (edge removals nested
+   8 levels, 40,000 a face): fewer Steiner points, more time on surfaces
+   whose faces flips find hard (on the shared benchmark's ten hardest, 149
+   Steiner points in 24 s; with 0, 202 in 17.5 s). 0 = without that round.
+   0 or 1. */
+#define CBR_PARAM_RECOVERY_DEEP_FLIPS 9
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */

@@ -10,7 +10,8 @@ namespace {
 
 void print_help(std::FILE* out) {
     std::fprintf(out,
-                 "usage: cbr mesh IN -o OUT [--size H] [--growth R] [--json FILE] [--keep-exterior] [--allow-open] [-q]\n"
+                 "usage: cbr mesh IN -o OUT [--size H] [--growth R] [--json FILE] [--keep-exterior] [--allow-open]\n"
+                 "       [--no-deep-flips] [-q]\n"
                  "\n"
                  "Tetrahedralizes the inside of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh): boundary recovery as in cbr recover (every triangle a face,\n"
@@ -35,6 +36,8 @@ void print_help(std::FILE* out) {
                  "                   refined)\n"
                  "  --allow-open     accept an open surface (it bounds no region: nothing is\n"
                  "                   refined)\n"
+                 "  --no-deep-flips  skip the deepest flip searches of recovery (as in cbr\n"
+                 "                   recover)\n"
                  "  -q               print nothing but errors (and no progress line)\n"
                  "\n"
                  "exit codes: 0 success; 1 usage; 2 invalid input (a file that does not\n"

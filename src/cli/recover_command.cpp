@@ -10,7 +10,8 @@ namespace {
 
 void print_help(std::FILE* out) {
     std::fprintf(out,
-                 "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open] [-q]\n"
+                 "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open]\n"
+                 "       [--no-deep-flips] [-q]\n"
                  "\n"
                  "Tetrahedralizes the points of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh) and recovers every one of its triangles as a face, without\n"
@@ -26,6 +27,8 @@ void print_help(std::FILE* out) {
                  "  --keep-exterior  also write the exterior tetrahedra (region 0)\n"
                  "  --allow-open     recover an open surface too (its faces are recovered,\n"
                  "                   but it bounds no region: use with --keep-exterior)\n"
+                 "  --no-deep-flips  skip the deepest flip searches: faster on surfaces whose\n"
+                 "                   faces flips find hard, for more Steiner points\n"
                  "  -q               print nothing but errors (and no progress line)\n"
                  "\n"
                  "A progress line is shown on stderr for steps longer than a second when\n"

@@ -29,6 +29,7 @@ struct VolumeArgs : OutputOptions {
     double growth = -1;  // mesh --growth R; < 0: not given (the library's default)
     bool keep_exterior = false;
     bool allow_open = false;
+    bool deep_flips = true;
 };
 
 // A finite number > 0 (or >= 0 with allow_zero).
@@ -65,6 +66,8 @@ int parse_args(int argc, char** argv, const VolumeCommand& command, VolumeArgs& 
             args.keep_exterior = true;
         } else if (a == "--allow-open") {
             args.allow_open = true;
+        } else if (a == "--no-deep-flips") {
+            args.deep_flips = false;
         } else if (!a.empty() && a[0] == '-') {
             return usage_error(name, "unknown option '" + a + "'");
         } else if (!args.input.empty()) {
@@ -98,6 +101,7 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
         options.output = args.output;
         options.keep_exterior = args.keep_exterior;
         options.allow_open = args.allow_open;
+        options.deep_flips = args.deep_flips;
         options.refine = command.refine;
         options.size = args.size;
         options.growth = args.growth;

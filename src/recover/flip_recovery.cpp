@@ -1,6 +1,7 @@
 #include "recover/flip_recovery.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <unordered_set>
 
 #include "geom/intersect.hpp"
@@ -390,7 +391,8 @@ private:
 }  // namespace
 
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                          const std::vector<std::size_t>& missing, FlipMemo memo) {
+                                          const std::vector<std::size_t>& missing, FlipMemo memo,
+                                          FlipRounds rounds) {
     FlipRecovery flips(m, faces, memo);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
@@ -399,7 +401,9 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     // point splitting recovers them anyway). Each harder round only sees
     // the faces the previous ones left, whose meshes it would otherwise
     // disturb before their own turn.
-    for (const Search& search : kSearches) {
+    const std::size_t round_count = std::size(kSearches) - (rounds == FlipRounds::kAll ? 0 : 1);
+    for (std::size_t r = 0; r < round_count; ++r) {
+        const Search& search = kSearches[r];
         bool progress = true;
         for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
             Search this_pass = search;

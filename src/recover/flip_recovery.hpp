@@ -23,10 +23,16 @@ namespace cbr::recover {
 // for the test that proves it.
 enum class FlipMemo { kOn, kOff };
 
+// Whether the last, deepest round of searches runs (flip_recovery.cpp,
+// kSearches): it recovers faces that would otherwise need Steiner points,
+// at most of the flips' time on the hard shared surfaces.
+enum class FlipRounds { kAll, kWithoutDeepest };
+
 // Tries to recover the faces `missing` (indices into `faces`); marks the
 // recovered ones as constraint faces; returns those still missing, in
 // increasing order.
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                          const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn);
+                                          const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn,
+                                          FlipRounds rounds = FlipRounds::kAll);
 
 }  // namespace cbr::recover

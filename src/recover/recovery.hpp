@@ -35,10 +35,17 @@ struct RecoveryResult {
     std::vector<mesh::VertexId> steiner;
 };
 
+struct RecoveryOptions {
+    // The deepest round of flip searches before the interior Steiner points
+    // (CBR_PARAM_RECOVERY_DEEP_FLIPS): fewer Steiner points, more time.
+    bool deep_flips = true;
+};
+
 // Recovers every triangle of `faces` as a face of m, marking them as
 // constraint faces. Steiner points are appended to m's vertices; ids below
 // the vertex count on entry never change. On failure m may have been
 // modified: the caller restores it.
-RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats);
+RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats,
+                             const RecoveryOptions& options = {});
 
 }  // namespace cbr::recover
