@@ -80,6 +80,7 @@ Contraction contraction_onto(const TetMesh& m, VertexId v, VertexId x, const std
         for (VertexId& w : k)
             if (w == v) w = x;
         c.min_quality = std::min(c.min_quality, quality(m, k));
+        if (c.min_quality == -kInf) return c;  // invalid: the caller drops it
         c.fresh.push_back(k);
     }
     return c;
@@ -116,7 +117,10 @@ struct Removal {
     std::vector<mesh::RingTriangle> triangles;
 };
 
-std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vector<TetId>& ball) {
+// The valid edge removals at v, best first; only the first found when
+// `first_only` (the caller asks whether there is one).
+std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vector<TetId>& ball,
+                                   bool first_only = false) {
     std::vector<Removal> out;
     for (VertexId x : link_vertices(m, v, ball)) {
         const TetId t = mesh::find_edge_tet(m, v, ball.front(), x);
@@ -125,6 +129,7 @@ std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vect
         if (t == mesh::kNoTet || !mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
         r.triangles = mesh::best_ring_triangulation(m, v, x, r.shell, &r.min_quality);
         if (!r.triangles.empty()) out.push_back(std::move(r));
+        if (first_only && !out.empty()) return out;
     }
     std::stable_sort(out.begin(), out.end(),
                      [](const Removal& a, const Removal& b) { return a.min_quality > b.min_quality; });
@@ -213,7 +218,7 @@ bool flip_link_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball0, std
         TetId at_v = mesh::kNoTet;
         for (TetId k : created)
             if (mesh::vertex_index(m, k, v) >= 0) at_v = k;
-        if (at_v != mesh::kNoTet && mesh::ball(m, v, at_v, ball) && !edge_removals(m, v, ball).empty()) {
+        if (at_v != mesh::kNoTet && mesh::ball(m, v, at_v, ball) && !edge_removals(m, v, ball, true).empty()) {
             ++rep.link_flips;
             return true;
         }
