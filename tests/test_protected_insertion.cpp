@@ -16,6 +16,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 #include "mesh_test_util.hpp"
 #include "test_util.hpp"
@@ -199,6 +200,63 @@ TEST_CASE("random insertions keep constraint faces and blocked faces") {
         MESSAGE("round " << round << ": correction moved " << corrections << " tetrahedra");
         CHECK(corrections > 0);  // a non-Delaunay mesh with walls needs it
     }
+}
+
+TEST_CASE("an insertion is undone by putting its cavity back in the star's slots") {
+    // What unblocking points do with a point they reject: the live slots
+    // come back as they were, vertices, neighbours and constraint marks;
+    // the star's other slots are free.
+    std::mt19937_64 rng(8);
+    const auto base = cbr::test::random_points(150, 300);
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(base.data(), 150).ok);
+    TetMesh& m = d.mesh_for_update();
+    std::set<Key3> constraints;
+    for (const auto& [t, f] : random_interior_faces(m, 40, rng)) mark_constraint(m, t, f, constraints);
+    const auto extra = cbr::test::random_points(40, 301, 0.2, 0.8);
+    std::size_t undone = 0;
+    for (std::size_t i = 0; i < 40; ++i) {
+        struct Slot {
+            std::array<VertexId, 4> v;
+            std::array<FacetRef, 4> n;
+            std::uint8_t constrained;
+            bool operator==(const Slot& o) const { return v == o.v && n == o.n && constrained == o.constrained; }
+        };
+        const auto slots = [&] {
+            std::map<TetId, Slot> out;
+            for (TetId t = 0; t < m.slot_count(); ++t) {
+                if (m.is_free(t)) continue;
+                Slot s{};
+                for (int k = 0; k < 4; ++k) {
+                    s.v[static_cast<std::size_t>(k)] = m.vertex(t, k);
+                    s.n[static_cast<std::size_t>(k)] = m.neighbor(t, k);
+                    if (m.is_constrained(t, k)) s.constrained |= static_cast<std::uint8_t>(1u << k);
+                }
+                out[t] = s;
+            }
+            return out;
+        };
+        const auto before = slots();
+        const std::size_t vertices = m.vertex_count();
+        const VertexId p = add_point(m, &extra[3 * i]);
+        const TetId start = locate(m, m.point(p));
+        REQUIRE(start != kNoTet);
+        const ProtectedInsertResult res = insert_protected(m, p, start);
+        if (!res.ok) {  // on a constraint face: nothing to undo
+            m.truncate_vertices(vertices);
+            continue;
+        }
+        REQUIRE(res.cavity.size() <= res.created.size());
+        std::vector<TetId> restored;
+        REQUIRE(replace_tets(m, res.created, res.cavity, &restored) == ReplaceResult::kDone);
+        m.truncate_vertices(vertices);
+        CHECK(std::equal(restored.begin(), restored.end(), res.created.begin()));
+        CHECK(slots() == before);
+        const CheckReport rep = check_mesh(m);
+        REQUIRE_MESSAGE(rep.ok(), (rep.errors.empty() ? std::string() : rep.errors[0]));
+        ++undone;
+    }
+    CHECK(undone > 30);
 }
 
 namespace {

@@ -428,6 +428,7 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     res.ok = false;
     res.why.clear();
     res.created.clear();
+    res.cavity.clear();
     res.initial_cavity = res.removed = res.added = 0;
     if (p >= m.vertex_count()) {
         res.why = "p is not a vertex of the mesh's coordinates";
@@ -447,6 +448,8 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     // tetrahedron with p in place of the vertex opposite the face (same
     // side, so the orientation is kept), listed by tetrahedron (sorted
     // ids) then face.
+    res.cavity.clear();
+    for (TetId t : c.tets()) res.cavity.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
     const mesh::ReplaceResult r = scratch_->star.replace(m, c.tets(), p, &res.created);
     if (r != mesh::ReplaceResult::kDone) {
         res.why = std::string("replace_tets refused the star: ") + mesh::to_string(r);
@@ -456,6 +459,8 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     res.ok = true;
     return res;
 }
+
+const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->result; }
 
 const ProtectedInsertResult& ProtectedInserter::insert(TetMesh& m, VertexId p, TetId start,
                                                        const BlockedFace& blocked) {

@@ -11,6 +11,7 @@
 // strictly visible from p, so the star of p is valid.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -29,6 +30,11 @@ struct ProtectedInsertResult {
     bool ok = false;
     std::string why;                   // when !ok: readable reason
     std::vector<mesh::TetId> created;  // when ok: the star of p
+    // When ok: the tetrahedra the star replaced (vertex ids), in the order
+    // of the first slots of `created`, which they occupied:
+    // replace_tets(m, created, cavity) undoes the insertion (slots of the
+    // cavity as they were; the star's other slots freed).
+    std::vector<std::array<mesh::VertexId, 4>> cavity;
     // Statistics of the §5.1 correction (also filled on failure).
     std::size_t initial_cavity = 0;  // tetrahedra before the correction
     std::size_t removed = 0;         // tetrahedra taken out
@@ -70,6 +76,8 @@ public:
 
     const ProtectedInsertResult& insert(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                         const BlockedFace& blocked = {});
+    // The result of the last call (valid until the next one).
+    const ProtectedInsertResult& last() const;
     const ProtectedInsertResult& insert_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                                   const std::vector<mesh::TetId>& cavity,
                                                   const BlockedFace& blocked = {}, bool keep_seed = false);

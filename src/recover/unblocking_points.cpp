@@ -10,6 +10,8 @@
 #include "geom/predicates.hpp"
 #include "geom/triangle_distance.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/errors.hpp"
+#include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 
 namespace cbr::recover {
@@ -182,7 +184,6 @@ private:
         const double ab[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
         const double length = std::sqrt(dot(ab, ab));
         const std::size_t targets = std::clamp<std::size_t>(count / kTetsPerPoint, 1, kMaxPointsPerEdge);
-        saved_ = false;
         for (std::size_t i = 0; i < targets && count > 0; ++i) {
             const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
             const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
@@ -207,23 +208,29 @@ private:
         if (met.empty()) return false;
         const TetId at = walk(met.front().tet, p);
         if (at == kNoTet || near_missing_face(p, clearance) || !conflicts_reach(at, p, met)) return false;
-        if (!saved_) {  // one copy per edge, taken before its first change
-            saved_mesh_ = m_;
-            saved_incident_ = incident_;
-            saved_ = true;
-        }
         std::size_t star = 0;
         if (!insert(at, p, steiner, star)) return false;
         const std::size_t after = met_count(a, b);
         if (after < count && star <= kMaxStar) {
             count = after;
-            saved_ = false;
             return true;
         }
-        m_ = saved_mesh_;
-        incident_ = saved_incident_;
-        steiner.pop_back();
+        undo_last_insertion(steiner);
         return false;
+    }
+
+    // The star of the last point inserted goes back to the cavity it
+    // replaced (the cavity's slots as they were), and the point goes.
+    void undo_last_insertion(std::vector<VertexId>& steiner) {
+        const ProtectedInsertResult& r = inserter_.last();
+        std::vector<TetId> restored;
+        if (mesh::replace_tets(m_, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
+            throw InternalError("unblocking points: the cavity of a rejected point could not be put back");
+        for (TetId t : restored)
+            for (int i = 0; i < 4; ++i)
+                if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
+        m_.truncate_vertices(steiner.back());
+        steiner.pop_back();
     }
 
     // The finite tetrahedra whose circumspheres hold p, connected to `at`
@@ -309,9 +316,6 @@ private:
     std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
     ProtectedInserter inserter_;
-    bool saved_ = false;
-    mesh::TetMesh saved_mesh_;
-    std::vector<TetId> saved_incident_;
 };
 
 }  // namespace
