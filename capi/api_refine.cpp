@@ -5,6 +5,7 @@
 #include <chrono>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "handle.hpp"
 #include "mesh/mesh_check.hpp"
@@ -56,8 +57,11 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         const cbr::capi::RecoveryState& rec = mesh->recovery;
         cbr::capi::RefineState state;
         cbr::recover::RegionMap regions;
+        // Refinement may suppress Steiner points (and renumber the points
+        // after the caller's): the list is replaced only on success.
+        std::vector<cbr::mesh::VertexId> steiner = rec.steiner;
         try {
-            state.stats = cbr::refine::refine_mesh(m, rec.faces, rec.regions.of_tet, rec.steiner, options);
+            state.stats = cbr::refine::refine_mesh(m, rec.faces, rec.regions.of_tet, steiner, options);
             regions = cbr::recover::classify_regions(m, rec.faces);
             const cbr::mesh::CheckReport check = cbr::mesh::check_mesh(m);
             if (!check.ok()) throw ApiError{CBR_ERR_INTERNAL, "refinement left an invalid mesh: " + check.errors.front()};
@@ -71,6 +75,7 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         }
         mesh->delaunay.adopt_added_vertices();  // new points: external id == internal id
         mesh->recovery.regions = std::move(regions);
+        mesh->recovery.steiner = std::move(steiner);  // what cbr_mesh_steiner_points reports from now on
         state.quality = cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner);
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;

@@ -297,7 +297,8 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
 CBR_API int cbr_mesh_recover_faces(cbr_mesh *mesh, int64_t count, const int64_t *tris, const int32_t *labels);
 
 /* Number of Steiner points (points added by recovery, all off the
-   surface); -1 for a NULL mesh. Their ids follow the input points'. */
+   surface; after cbr_mesh_refine, those it kept); -1 for a NULL mesh.
+   Their ids follow the input points'. */
 CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh *mesh);
 
 /* Copies the ids of the Steiner points (cbr_mesh_steiner_count of them, in
@@ -330,7 +331,11 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
    input edge is at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing
    field at its ends. New points get the next ids, after the points
    inserted so far (and recovery's Steiner points); the Steiner points of
-   recovery may move (smoothing). Statistics: CBR_STAT_QUALITY_AVERAGE ...
+   recovery may move (smoothing, relocation) or, where one keeps an
+   element with q < 0.1, be suppressed: cbr_mesh_steiner_count and
+   cbr_mesh_steiner_points then report those left, and the ids after the
+   caller's points close up (Steiner points left, then the new points;
+   the caller's ids never change). Statistics: CBR_STAT_QUALITY_AVERAGE ...
    CBR_STAT_REFINE_TETS. It may be called again (it refines further, with
    the parameters then set).
    Errors (the mesh is then unchanged):

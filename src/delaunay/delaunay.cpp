@@ -146,6 +146,15 @@ InsertOutcome Delaunay::insert_batch(VertexId first, std::size_t end) {
 
 void Delaunay::adopt_added_vertices() {
     const std::size_t n = mesh_.vertex_count();
+    // Added points may also have been dropped since (a Steiner point
+    // suppressed by refinement, the ids after it closed up): the
+    // numberings end where the mesh's points end. The caller's points
+    // (before the last batch end) are never dropped.
+    const std::size_t first_added = batch_ends_.empty() ? 0 : batch_ends_.back();
+    if (n >= first_added && external_of_.size() > n) {
+        external_of_.resize(n);
+        internal_of_.resize(n);
+    }
     for (std::size_t v = external_of_.size(); v < n; ++v) {
         external_of_.push_back(static_cast<VertexId>(v));
         internal_of_.push_back(static_cast<VertexId>(v));

@@ -53,7 +53,9 @@ public:
     // Points that a later step appended to the mesh (Steiner and field
     // points, TetMesh::add_points) join both numberings with external id ==
     // internal id, i.e. after the caller's points in the order they were
-    // added. rebuild() drops them again (back to the last batch).
+    // added. rebuild() drops them again (back to the last batch). Added
+    // points that a later step dropped again (ids compacted, so the mesh
+    // has fewer points than both numberings) leave the numberings too.
     void adopt_added_vertices();
     mesh::VertexId external_id(mesh::VertexId internal) const { return external_of_[internal]; }
     mesh::VertexId internal_id(mesh::VertexId external) const { return internal_of_[external]; }

@@ -2,8 +2,10 @@
 
 namespace cbr::mesh {
 
-void compact_vertices_from(TetMesh& m, std::size_t first, std::vector<VertexId>& keep_in_step) {
+void compact_vertices_from(TetMesh& m, std::size_t first, std::vector<VertexId>& keep_in_step,
+                           std::vector<VertexId>* kept_old_ids) {
     const std::size_t n = m.vertex_count();
+    if (kept_old_ids) kept_old_ids->clear();
     if (first >= n) return;
     constexpr VertexId kDropped = kGhostVertex;
     std::vector<VertexId> new_id(n - first, kDropped);
@@ -19,6 +21,7 @@ void compact_vertices_from(TetMesh& m, std::size_t first, std::vector<VertexId>&
     for (std::size_t k = 0; k < new_id.size(); ++k) {
         if (new_id[k] == kDropped) continue;
         new_id[k] = next++;
+        if (kept_old_ids) kept_old_ids->push_back(static_cast<VertexId>(first + k));
         const double* p = m.point(static_cast<VertexId>(first + k));
         kept.insert(kept.end(), p, p + 3);
     }

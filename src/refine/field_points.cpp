@@ -48,7 +48,7 @@ struct Entry {
 class Refiner {
 public:
     Refiner(RefineContext& c, RefineStats& stats) : c_(c), m_(c.m), stats_(stats) {}
-    void run();
+    void run(const std::vector<TetId>* seeds);
 
 private:
     void push(TetId t) {
@@ -262,9 +262,14 @@ std::size_t Refiner::point_cap() const {
     return static_cast<std::size_t>(std::min(2.0 * ideal_tets + 1000.0, 1.0e9));
 }
 
-void Refiner::run() {
-    for (TetId t = 0; t < m_.slot_count(); ++t)
-        if (c_.in_domain(t)) push(t);
+void Refiner::run(const std::vector<TetId>* seeds) {
+    if (seeds) {
+        for (TetId t : *seeds)
+            if (t < m_.slot_count() && !m_.is_free(t) && c_.in_domain(t)) push(t);
+    } else {
+        for (TetId t = 0; t < m_.slot_count(); ++t)
+            if (c_.in_domain(t)) push(t);
+    }
     const std::size_t cap = point_cap();
     while (!queue_.empty()) {
         const Entry e = queue_.front();
@@ -288,9 +293,9 @@ void Refiner::run() {
 
 }  // namespace
 
-void insert_field_points(RefineContext& c, RefineStats& stats) {
+void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<TetId>* seeds) {
     Refiner r(c, stats);
-    r.run();
+    r.run(seeds);
 }
 
 }  // namespace cbr::refine

@@ -20,6 +20,8 @@
 // half the local size (no cascades at small input angles).
 #pragma once
 
+#include <vector>
+
 #include "refine/refine_context.hpp"
 #include "refine/refine_options.hpp"
 
@@ -27,7 +29,8 @@ namespace cbr::refine {
 
 // Refines every tetrahedron of the bounded regions of c.m; new points are
 // appended to the mesh coordinates (after the existing ones, in insertion
-// order) and to c.size.
-void insert_field_points(RefineContext& c, RefineStats& stats);
+// order) and to c.size. With `seeds`, only those tetrahedra (the live ones
+// of the bounded regions) and what their refinement creates.
+void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<mesh::TetId>* seeds = nullptr);
 
 }  // namespace cbr::refine

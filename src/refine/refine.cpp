@@ -1,10 +1,15 @@
 #include "refine/refine.hpp"
 
+#include <algorithm>
+
+#include "mesh/vertex_compaction.hpp"
 #include "refine/field_points.hpp"
 #include "refine/quality_flips.hpp"
 #include "refine/refine_context.hpp"
 #include "refine/sliver_removal.hpp"
 #include "refine/smoothing.hpp"
+#include "refine/steiner_relocation.hpp"
+#include "refine/steiner_removal.hpp"
 
 namespace cbr::refine {
 
@@ -15,30 +20,58 @@ constexpr double kFlipThreshold = 0.7;
 // Tetrahedra below this radius ratio that flips and smoothing leave get a
 // point with a chosen cavity (sliver_removal.hpp); Table II counts them bad.
 constexpr double kSliverThreshold = 0.1;
+// Passes beyond options.optimisation_passes while the Steiner points still
+// have bad tetrahedra and the last pass suppressed or relocated one.
+constexpr int kExtraSteinerPasses = 5;
 
 RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
-                        const std::vector<std::int32_t>& region_of_slot, const std::vector<mesh::VertexId>& steiner,
+                        const std::vector<std::int32_t>& region_of_slot, std::vector<mesh::VertexId>& steiner,
                         const RefineOptions& options, std::vector<double>* vertex_sizes) {
     RefineStats stats;
+    // Vertices from here on may be renumbered (Steiner and field points).
+    const mesh::VertexId first_added = steiner.empty() ? 0 : *std::min_element(steiner.begin(), steiner.end());
     RefineContext c(m, faces, region_of_slot, steiner, options);
     insert_field_points(c, stats);  // step (d)
-    for (int pass = 0; pass < options.optimisation_passes; ++pass) {  // step (e)
+    bool dropped = false;  // a vertex left the mesh: the ids close up at the end
+    // §6: Steiner points minimization, retried on the refined mesh.
+    if (options.steiner_suppression) remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped);
+    bool steiner_progress = false;
+    for (int pass = 0; pass < options.optimisation_passes + kExtraSteinerPasses; ++pass) {  // step (e)
+        if (pass >= options.optimisation_passes &&
+            (!steiner_progress || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
+            break;
         c.start_pass();
         const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold) : 0;
         const std::size_t moves = options.smoothing ? smooth_vertices(c) : 0;
+        // §6: the Steiner points that still have a bad tetrahedron are
+        // suppressed if their ball now allows it, else moved together
+        // with their neighbourhood (steiner_relocation.hpp).
+        const std::size_t suppressed =
+            options.steiner_suppression ? remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped) : 0;
+        const std::size_t relocated =
+            options.steiner_relocation ? relocate_steiner_points(c, steiner, kSliverThreshold) : 0;
         const std::size_t slivers = options.slivers ? remove_slivers(c, kSliverThreshold) : 0;
+        steiner_progress = suppressed > 0 || relocated > 0;
+        stats.steiner_relocated += relocated;
         stats.flips += flips;
         stats.smoothed += moves;
         stats.field_points += slivers;
         stats.sliver_points += slivers;
-        if (flips == 0 && moves == 0 && slivers == 0) break;
+        if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
     for (mesh::TetId t = 0; t < m.slot_count(); ++t)
         if (c.in_domain(t) && !c.tet_within_size(t)) ++stats.unresolved_size;
-    if (vertex_sizes) {
-        vertex_sizes->resize(m.vertex_count());
-        for (mesh::VertexId v = 0; v < m.vertex_count(); ++v) (*vertex_sizes)[v] = c.size.at(v);
+    std::vector<double> sizes(m.vertex_count());
+    for (mesh::VertexId v = 0; v < m.vertex_count(); ++v) sizes[v] = c.size.at(v);
+    if (dropped) {
+        // Suppressed points are in no tetrahedron: the ids after the input
+        // points close up (Steiner points first, then field points).
+        std::vector<mesh::VertexId> kept;
+        mesh::compact_vertices_from(m, first_added, steiner, &kept);
+        for (std::size_t i = 0; i < kept.size(); ++i) sizes[first_added + i] = sizes[kept[i]];
+        sizes.resize(m.vertex_count());
     }
+    if (vertex_sizes) vertex_sizes->swap(sizes);
     return stats;
 }
 

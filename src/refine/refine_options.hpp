@@ -37,6 +37,8 @@ struct RefineOptions {
     bool flips = true;
     bool smoothing = true;
     bool slivers = true;  // sliver removal (sliver_removal.hpp)
+    bool steiner_suppression = true;  // steiner_removal.hpp
+    bool steiner_relocation = true;   // steiner_relocation.hpp
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -60,6 +62,8 @@ struct RefineStats {
     std::size_t flips = 0;              // quality flips done (2-3 and edge removals)
     std::size_t smoothed = 0;           // vertex moves accepted
     std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
+    std::size_t steiner_suppressed = 0; // Steiner points suppressed after refinement (steiner_removal.hpp)
+    std::size_t steiner_relocated = 0;  // Steiner points moved with their neighbourhood (steiner_relocation.hpp)
 };
 
 }  // namespace cbr::refine
