@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "geom/predicates.hpp"
@@ -105,19 +106,9 @@ void SliverRemover::add_candidates(TetId sliver) {
         const double* a = m_.point(v[k[0]]);
         const double* b = m_.point(v[k[1]]);
         const double* d = m_.point(v[k[2]]);
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
         // (a, b, d) in kFaceVertices order sees the sliver on its positive
-        // side: u x w points into the sliver.
-        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(len > 0)) continue;
-        const double edge = (std::sqrt(squared_distance(a, b)) + std::sqrt(squared_distance(b, d)) +
-                             std::sqrt(squared_distance(a, d))) / 3;
-        for (double height : kApexHeights) {
-            Point p;
-            for (int i = 0; i < 3; ++i) p[i] = (a[i] + b[i] + d[i]) / 3 + height * edge * n[i] / len;
-            candidates_.push_back(p);
-        }
+        // side: (b - a) x (d - a) points into the sliver.
+        add_apexes(a, b, d, kApexHeights, std::size(kApexHeights), candidates_);
     }
 }
 

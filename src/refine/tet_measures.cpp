@@ -133,4 +133,19 @@ double radius_edge_ratio(const double* a, const double* b, const double* c, cons
     return std::sqrt(r2 / shortest);
 }
 
+void add_apexes(const double* a, const double* b, const double* d, const double* heights, std::size_t count,
+                std::vector<Point>& out) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) return;
+    const double edge =
+        (std::sqrt(squared_distance(a, b)) + std::sqrt(squared_distance(b, d)) + std::sqrt(squared_distance(a, d))) / 3;
+    for (std::size_t h = 0; h < count; ++h) {
+        Point p;
+        for (int i = 0; i < 3; ++i) p[i] = (a[i] + b[i] + d[i]) / 3 + heights[h] * edge * n[i] / len;
+        out.push_back(p);
+    }
+}
+
 }  // namespace cbr::refine

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <vector>
 
 #include "mesh/tet_mesh.hpp"
 
@@ -39,6 +41,14 @@ bool circumcentre(const double* a, const double* b, const double* c, const doubl
 bool triangle_circumsphere(const double* a, const double* b, const double* c, Point& centre, double& radius2);
 
 double squared_distance(const double* p, const double* q);
+
+// Apex candidates over triangle (a, b, d): points above its centroid, on
+// the side (b - a) x (d - a) points to, at each of `heights` times its mean
+// edge length, appended to `out` (nothing for a triangle flat in double).
+// Where sliver removal and Steiner relocation look for a well-shaped
+// tetrahedron on a face.
+void add_apexes(const double* a, const double* b, const double* d, const double* heights, std::size_t count,
+                std::vector<Point>& out);
 
 // Circumradius over shortest edge (the radius-edge ratio of Delaunay
 // refinement, TetGen's -q bound); +inf for a flat tetrahedron.
