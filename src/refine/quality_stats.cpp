@@ -7,11 +7,16 @@
 
 namespace cbr::refine {
 
+std::vector<char> steiner_flags(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& steiner) {
+    std::vector<char> flags(m.vertex_count(), 0);
+    for (mesh::VertexId v : steiner)
+        if (v < flags.size()) flags[v] = 1;
+    return flags;
+}
+
 QualityTable measure_quality(const mesh::TetMesh& m, const std::vector<std::int32_t>& region_of_slot,
                              const std::vector<mesh::VertexId>& steiner) {
-    std::vector<char> is_steiner(m.vertex_count(), 0);
-    for (mesh::VertexId v : steiner)
-        if (v < is_steiner.size()) is_steiner[v] = 1;
+    const std::vector<char> is_steiner = steiner_flags(m, steiner);
     QualityTable s;
     double sum = 0, q_min = std::numeric_limits<double>::infinity();
     double lo = 180, hi = 0;

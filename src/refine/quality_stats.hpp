@@ -19,6 +19,10 @@ struct QualityTable {
     double dihedral_min_deg = 0, dihedral_max_deg = 0;
 };
 
+// One flag per vertex of m: 1 for the ids in `steiner` (recovery's Steiner
+// points), 0 for the others.
+std::vector<char> steiner_flags(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& steiner);
+
 // Over the live finite tetrahedra t with region_of_slot[t] > 0; `steiner`:
 // the Steiner points of recovery (internal ids). All zero without any
 // tetrahedron.

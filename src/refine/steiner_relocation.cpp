@@ -9,6 +9,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/slot_marks.hpp"
 #include "mesh/surgery.hpp"
+#include "refine/quality_stats.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -248,9 +249,7 @@ bool Relocator::relocate(VertexId v, TetId start, double threshold) {
 
 std::size_t relocate_steiner_points(RefineContext& c, const std::vector<VertexId>& steiner, double threshold) {
     if (steiner.empty()) return 0;
-    std::vector<char> is_steiner(c.m.vertex_count(), 0);
-    for (VertexId v : steiner)
-        if (v < is_steiner.size()) is_steiner[v] = 1;
+    const std::vector<char> is_steiner = steiner_flags(c.m, steiner);
     Relocator r(c, is_steiner);
     std::size_t moved = 0;
     std::vector<TetId> incident = mesh::incident_tets(c.m);

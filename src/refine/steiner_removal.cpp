@@ -8,6 +8,7 @@
 #include "mesh/surgery.hpp"
 #include "recover/steiner_suppression.hpp"
 #include "refine/field_points.hpp"
+#include "refine/quality_stats.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -165,9 +166,7 @@ std::size_t remove_bad_steiner_points(RefineContext& c, std::vector<VertexId>& s
                                       RefineStats& stats, bool& dropped) {
     if (steiner.empty()) return 0;
     Remover r(c, threshold);
-    std::vector<char> is_steiner(c.m.vertex_count(), 0);
-    for (VertexId v : steiner)
-        if (v < is_steiner.size()) is_steiner[v] = 1;
+    const std::vector<char> is_steiner = steiner_flags(c.m, steiner);
     std::vector<VertexId> kept;
     std::size_t suppressed = 0, cleared = 0;
     for (VertexId v : steiner) {
@@ -201,9 +200,7 @@ std::size_t remove_bad_steiner_points(RefineContext& c, std::vector<VertexId>& s
 }
 
 std::size_t bad_tets_at_steiner(const RefineContext& c, const std::vector<VertexId>& steiner, double threshold) {
-    std::vector<char> is_steiner(c.m.vertex_count(), 0);
-    for (VertexId v : steiner)
-        if (v < is_steiner.size()) is_steiner[v] = 1;
+    const std::vector<char> is_steiner = steiner_flags(c.m, steiner);
     std::size_t bad = 0;
     for (TetId t = 0; t < c.m.slot_count(); ++t) {
         if (!c.in_domain(t)) continue;
