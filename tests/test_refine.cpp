@@ -590,6 +590,30 @@ TEST_CASE("refine: shared surfaces that recover today") {
     }
 }
 
+TEST_CASE("refine: ridge slivers on a tessellated sphere go through the shell of their inner edge") {
+    // wildmeshing-csg-ball: every edge of its regular tessellation is
+    // nearly flat, and Delaunay keeps a sliver on such a ridge (four
+    // surface vertices, two of its faces input triangles). Neither flips
+    // (the ring of its inner edge has no valid triangulation) nor the
+    // cavities of growing reach (the edge under the ridge stays in them,
+    // leaving the point no room) remove it: radius ratio 0.0014, minimum
+    // dihedral angle 0.9 deg. A point in the shell of that edge, placed by
+    // the pattern search, does: every tetrahedron above q = 0.1 (TetGen
+    // -pYq1.414: minimum dihedral 7.3 deg on this surface).
+    const std::string dir = cbr::test::shared_data_dir();
+    if (dir.empty()) {
+        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
+        return;
+    }
+    cbr::test::OffSurface off;
+    REQUIRE(cbr::test::read_off(dir + "/surfaces/wildmeshing-csg-ball.off", off));
+    const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.75, false);
+    CHECK(out.stats.sliver_points >= 1);
+    CHECK(out.quality.minimum > 0.1);
+    CHECK(out.quality.percent_below_0_1 == 0);
+    CHECK(out.quality.dihedral_min_deg > 7.3);
+}
+
 TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {
     // Near its sharp edges, circumcentres once went in 1e-4 of the local
     // size from a vertex their corrected cavity kept (two field points

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
@@ -27,6 +28,11 @@ constexpr double kSliverGain = 2.0;
 constexpr double kApexHeights[] = {0.6, 0.3, 0.15};
 // Rings of neighbours taken into the cavity.
 constexpr int kMaxReach = 6;
+// Shells of the sliver's edges taken as cavities up to this many
+// tetrahedra.
+constexpr std::size_t kMaxShell = 12;
+// Step halvings of the pattern search (climb).
+constexpr int kClimbHalvings = 5;
 
 struct BoundaryFace {
     std::array<const double*, 3> corners;  // p is on the cavity's side when orient3d(corners, p) > 0
@@ -34,10 +40,19 @@ struct BoundaryFace {
 
 class SliverRemover {
 public:
-    explicit SliverRemover(RefineContext& c) : c_(c), m_(c.m) {}
+    SliverRemover(RefineContext& c, double threshold) : c_(c), m_(c.m), threshold_(threshold) {}
     bool remove(TetId sliver);
 
 private:
+    struct Choice {
+        Point point = {0, 0, 0};
+        double quality = 0;  // the star's worst radius ratio; 0: none yet
+        std::vector<TetId> cavity;
+    };
+    enum class Search { kCandidates, kClimb };
+    void rate_cavity(TetId sliver, double floor, Search search, Choice& best);
+    void rate_shells(TetId sliver, Choice& best);
+    void climb(TetId sliver, Point& p, double& q) const;
     bool in_cavity(TetId t) const { return marks_.has(t, kInCavity); }
     void add_to_cavity(TetId t) {
         cavity_.push_back(t);
@@ -50,11 +65,13 @@ private:
 
     RefineContext& c_;
     mesh::TetMesh& m_;
+    const double threshold_;  // radius ratio below which a tetrahedron is a sliver
     std::vector<TetId> cavity_;
     static constexpr std::uint8_t kInCavity = 1u << 0;
     mesh::SlotMarks marks_;  // kInCavity: the slots of cavity_
     std::vector<BoundaryFace> boundary_;
     std::vector<Point> candidates_;
+    mesh::Shell shell_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
 };
 
@@ -126,19 +143,103 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
+// Rates every candidate's star over the current cavity_; a star that
+// beats the cavity's worst tetrahedron by kSliverGain, `floor` and `best`
+// replaces `best`, with its cavity.
+void SliverRemover::rate_cavity(TetId sliver, double floor, Search search, Choice& best) {
+    double old_min = 1;
+    for (TetId t : cavity_) old_min = std::min(old_min, radius_ratio(m_, t));
+    collect_boundary();
+    add_candidates(sliver);
+    const double bar = std::max(kSliverGain * old_min, floor);
+    // The best candidate with a valid star, then climbed (climb).
+    double q_start = 0;
+    Point start = {0, 0, 0};
+    for (const Point& p : candidates_) {
+        const double q = star_quality(p.data(), q_start);
+        if (q > q_start) q_start = q, start = p;
+    }
+    if (q_start == 0) return;
+    if (search == Search::kClimb) climb(sliver, start, q_start);
+    if (q_start > bar && q_start > best.quality) {
+        best.quality = q_start;
+        best.point = start;
+        best.cavity = cavity_;
+    }
+}
+
+// Pattern search from p (star quality q): steps along the axes of a
+// quarter of the sliver's mean edge length, halved when no step raises
+// the star's worst radius ratio, five times. The candidates are a few
+// fixed points; the kernel of the cavity often has a much better one
+// nearby.
+void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
+    const VertexId* v = m_.vertices(sliver);
+    double step = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) step += std::sqrt(squared_distance(m_.point(v[i]), m_.point(v[j])));
+    step /= 6 * 4;
+    for (int halvings = 0; halvings < kClimbHalvings;) {
+        Point next = p;
+        double q_next = q;
+        for (int axis = 0; axis < 3; ++axis)
+            for (double sign : {-1.0, 1.0}) {
+                Point c = p;
+                c[static_cast<std::size_t>(axis)] += sign * step;
+                const double qc = star_quality(c.data(), q_next);
+                if (qc > q_next) q_next = qc, next = c;
+            }
+        if (q_next > q) {
+            p = next;
+            q = q_next;
+        } else {
+            step /= 2;
+            ++halvings;
+        }
+    }
+}
+
+// The shell of each interior edge of the sliver as a cavity. A flat
+// tetrahedron has two edges with dihedral angles near 180 degrees; a point
+// inside the shell of one of them replaces the edge (the point form of the
+// shell transformation, Definition 5.8, for a ring that has no valid
+// triangulation). Against a ridge of two nearly coplanar input triangles
+// this is the only small cavity with room below the ridge: the sliver's
+// face neighbours alone leave the point between the ridge and the edge.
+// Only a star without slivers counts here; the rings below keep their
+// own, weaker bar.
+void SliverRemover::rate_shells(TetId sliver, Choice& best) {
+    const std::int32_t region = c_.region(sliver);
+    VertexId v[4];
+    std::copy_n(m_.vertices(sliver), 4, v);
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+            if (c_.is_surface_edge(v[i], v[j])) continue;
+            if (!mesh::shell(m_, v[i], v[j], sliver, shell_) || shell_.has_ghost() || shell_.size() > kMaxShell)
+                continue;
+            const bool inside = std::all_of(shell_.tets.begin(), shell_.tets.end(),
+                                            [&](TetId t) { return c_.in_domain(t) && c_.region(t) == region; });
+            if (!inside) continue;
+            marks_.new_round(m_.slot_count());
+            cavity_.clear();
+            for (TetId t : shell_.tets) add_to_cavity(t);
+            rate_cavity(sliver, threshold_, Search::kClimb, best);
+        }
+}
+
 bool SliverRemover::remove(TetId sliver) {
     const std::int32_t region = c_.region(sliver);
+    Choice best;
+    rate_shells(sliver, best);
     // Cavities of growing reach: the sliver and its neighbours, then theirs
     // too, and so on (a bigger cavity takes in a candidate that a small
     // one's boundary hides: near a sharp feature the tetrahedra around a
     // sliver are thin too); the first reach with a valid star, its best
-    // candidate.
-    Point best_point = {0, 0, 0};
-    double best = 0;
+    // candidate, unless a shell had one.
     marks_.new_round(m_.slot_count());
     cavity_.clear();
     add_to_cavity(sliver);
-    for (int reach = 1; reach <= kMaxReach && best == 0; ++reach) {
+    for (int reach = 1; reach <= kMaxReach && best.quality == 0; ++reach) {
         const std::size_t outer = cavity_.size();
         for (std::size_t i = 0; i < outer; ++i) {
             const TetId t = cavity_[i];
@@ -148,23 +249,15 @@ bool SliverRemover::remove(TetId sliver) {
                 if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) add_to_cavity(n);
             }
         }
-        double old_min = 1;
-        for (TetId t : cavity_) old_min = std::min(old_min, radius_ratio(m_, t));
-        collect_boundary();
-        add_candidates(sliver);
-        for (const Point& p : candidates_) {
-            const double q = star_quality(p.data(), std::max(best, kSliverGain * old_min));
-            if (q > kSliverGain * old_min && q > best) best = q, best_point = p;
-        }
+        rate_cavity(sliver, 0, Search::kCandidates, best);
     }
-    // The loop stopped at the smallest cavity with a valid star (the least
-    // change), or found none.
-    if (best == 0) return false;
-    const Point* chosen = &best_point;
-    const TetId start = containing(chosen->data());
+    // The smallest cavity with a valid star (the least change), or none.
+    if (best.quality == 0) return false;
+    cavity_.swap(best.cavity);
+    const TetId start = containing(best.point.data());
     if (start == mesh::kNoTet) return false;
-    const double h = c_.size.for_new_point(m_, start, chosen->data());
-    const VertexId id = m_.add_points(chosen->data(), 1);
+    const double h = c_.size.for_new_point(m_, start, best.point.data());
+    const VertexId id = m_.add_points(best.point.data(), 1);
     const recover::ProtectedInsertResult& r = inserter_.insert_in_cavity(m_, id, start, cavity_, {}, /*keep_seed=*/true);
     // Every boundary face sees the point: the kernel's correction has
     // nothing to change, and the star is the one judged above.
@@ -181,7 +274,7 @@ bool SliverRemover::remove(TetId sliver) {
 }  // namespace
 
 std::size_t remove_slivers(RefineContext& c, double threshold) {
-    SliverRemover remover(c);
+    SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {

@@ -10,15 +10,21 @@
 // sliver's circumball barely reaches into the domain).
 //
 // Here a point goes in with a chosen cavity instead (the protected
-// insertion kernel, recover::insert_protected_in_cavity): the sliver and
-// its neighbours across non-constraint faces, one ring after another up to
-// six, all in one region (the smallest that admits a valid star). The
-// point is the best of a few candidates (centroids of the sliver, of the
-// cavity, of each neighbour, and points above the sliver's constraint
-// faces), judged exactly before anything changes: every face of the
-// cavity's boundary must see it strictly (so the star is valid and the
-// point is strictly inside the region, never on the surface), and the
-// star's worst radius ratio must beat the cavity's by kSliverGain.
+// insertion kernel, recover::insert_protected_in_cavity). First the shell
+// of each of the sliver's interior edges (a flat tetrahedron has two edges
+// with dihedral angles near 180 degrees; against a ridge of two nearly
+// coplanar input triangles the shell of the edge under the ridge is the
+// only small cavity with room for a well-shaped star): there the best
+// candidate is climbed by a pattern search and counts only when its star
+// has no sliver left. Else the sliver and its neighbours across
+// non-constraint faces, one ring after another up to six, all in one
+// region (the smallest that admits a valid star, beating the cavity's
+// worst tetrahedron by kSliverGain). The candidates are centroids of the
+// sliver, of the cavity, of each cavity tetrahedron, and points above the
+// sliver's constraint faces, judged exactly before anything changes: every
+// face of the cavity's boundary must see the point strictly (so the star
+// is valid and the point is strictly inside the region, never on the
+// surface).
 #pragma once
 
 #include <cstddef>
