@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <iterator>
-#include <utility>
 #include <vector>
 
 #include "geom/predicates.hpp"
@@ -59,7 +58,7 @@ private:
     void rate_cavity(TetId sliver, double floor, Search search, Choice& best);
     void rate_shells(TetId sliver, Choice& best);
     void climb(TetId sliver, Point& p, double& q) const;
-    std::array<std::pair<int, int>, 2> widest_edges(TetId t) const;
+    std::array<std::size_t, 2> widest_edges(TetId t) const;
     bool in_cavity(TetId t) const { return marks_.has(t, kInCavity); }
     void add_to_cavity(TetId t) {
         cavity_.push_back(t);
@@ -218,11 +217,11 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
 // own, weaker bar.
 void SliverRemover::rate_shells(TetId sliver, Choice& best) {
     const std::int32_t region = c_.region(sliver);
-    VertexId v[4];
-    std::copy_n(m_.vertices(sliver), 4, v);
-    for (const auto& [i, j] : widest_edges(sliver)) {
-        if (c_.is_surface_edge(v[i], v[j])) continue;
-        if (!mesh::shell(m_, v[i], v[j], sliver, shell_) || shell_.has_ghost() || shell_.size() > kMaxShell) continue;
+    const VertexId* v = m_.vertices(sliver);  // nothing here changes the mesh
+    for (std::size_t e : widest_edges(sliver)) {
+        const VertexId a = v[kTetEdges[e][0]], b = v[kTetEdges[e][1]];
+        if (c_.is_surface_edge(a, b)) continue;
+        if (!mesh::shell(m_, a, b, sliver, shell_) || shell_.has_ghost() || shell_.size() > kMaxShell) continue;
         const bool inside = std::all_of(shell_.tets.begin(), shell_.tets.end(),
                                         [&](TetId t) { return c_.in_domain(t) && c_.region(t) == region; });
         if (!inside) continue;
@@ -233,36 +232,15 @@ void SliverRemover::rate_shells(TetId sliver, Choice& best) {
     }
 }
 
-// The two edges of t (vertex slots) with the largest dihedral angles, the
-// largest first: the edge at which the faces opposite its other two
-// vertices have the most nearly parallel outward normals.
-std::array<std::pair<int, int>, 2> SliverRemover::widest_edges(TetId t) const {
+// The two edges of t (kTetEdges indices) with the largest dihedral
+// angles, the largest first.
+std::array<std::size_t, 2> SliverRemover::widest_edges(TetId t) const {
     const VertexId* v = m_.vertices(t);
-    std::array<std::array<double, 3>, 4> normal{};
-    for (int f = 0; f < 4; ++f) {
-        const int* k = kFaceVertices[f];
-        const double* a = m_.point(v[k[0]]);
-        const double* b = m_.point(v[k[1]]);
-        const double* d = m_.point(v[k[2]]);
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-        std::array<double, 3>& n = normal[static_cast<std::size_t>(f)];
-        n = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (len > 0)
-            for (double& x : n) x /= len;
-    }
-    // Edge (i, j) lies on the faces opposite k and l, the other two slots.
-    std::array<std::pair<int, int>, 6> edges = {{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
-    const auto alignment = [&](const std::pair<int, int>& e) {
-        int other[2], n = 0;
-        for (int s = 0; s < 4; ++s)
-            if (s != e.first && s != e.second) other[n++] = s;
-        const auto& p = normal[static_cast<std::size_t>(other[0])];
-        const auto& q = normal[static_cast<std::size_t>(other[1])];
-        return p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
-    };
+    std::array<double, 6> deg;
+    dihedral_angles(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), deg);
+    std::array<std::size_t, 6> edges = {0, 1, 2, 3, 4, 5};
     std::partial_sort(edges.begin(), edges.begin() + 2, edges.end(),
-                      [&](const auto& a, const auto& b) { return alignment(a) > alignment(b); });
+                      [&](std::size_t x, std::size_t y) { return deg[x] > deg[y]; });
     return {edges[0], edges[1]};
 }
 

@@ -74,24 +74,33 @@ double radius_ratio(const double* a, const double* b, const double* c, const dou
     return std::clamp(q, 0.0, 1.0);
 }
 
-void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
-                    double& max_deg) {
+bool dihedral_angles(const double* a, const double* b, const double* c, const double* d,
+                     std::array<double, 6>& deg) {
     V u, v, w;
     if (!unit_edges(a, b, c, d, u, v, w)) {
+        deg.fill(0);
+        return false;
+    }
+    const V p[4] = {V{0, 0, 0}, u, v, w};
+    for (std::size_t i = 0; i < 6; ++i) {
+        const auto& e = kTetEdges[i];
+        const auto at = [&](int k) { return p[e[static_cast<std::size_t>(k)]]; };
+        const V axis = sub(at(1), at(0));
+        const V n1 = cross(axis, sub(at(2), at(0))), n2 = cross(axis, sub(at(3), at(0)));
+        deg[i] = std::atan2(len(cross(n1, n2)), dot(n1, n2)) * (180 / kPi);
+    }
+    return true;
+}
+
+void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
+                    double& max_deg) {
+    std::array<double, 6> deg;
+    if (!dihedral_angles(a, b, c, d, deg)) {
         min_deg = max_deg = 0;
         return;
     }
-    const V p[4] = {V{0, 0, 0}, u, v, w};
-    static constexpr int kEdge[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    min_deg = 180;
-    max_deg = 0;
-    for (const auto& e : kEdge) {
-        const V axis = sub(p[e[1]], p[e[0]]);
-        const V n1 = cross(axis, sub(p[e[2]], p[e[0]])), n2 = cross(axis, sub(p[e[3]], p[e[0]]));
-        const double deg = std::atan2(len(cross(n1, n2)), dot(n1, n2)) * (180 / kPi);
-        min_deg = std::min(min_deg, deg);
-        max_deg = std::max(max_deg, deg);
-    }
+    min_deg = *std::min_element(deg.begin(), deg.end());
+    max_deg = *std::max_element(deg.begin(), deg.end());
 }
 
 bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre) {

@@ -30,6 +30,16 @@ inline double radius_ratio(const mesh::TetMesh& m, mesh::TetId t) {
     return radius_ratio(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
 }
 
+// The six edges of a tetrahedron as corner slots, each followed by the two
+// other corners: {i, j, k, l} is edge ij, between faces ijk and ijl.
+inline constexpr std::array<std::array<int, 4>, 6> kTetEdges = {
+    {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}}};
+
+// Dihedral angle at each edge of abcd (kTetEdges order), in degrees;
+// false (all 0) when the tetrahedron has no extent in double.
+bool dihedral_angles(const double* a, const double* b, const double* c, const double* d,
+                     std::array<double, 6>& deg);
+
 // Smallest and largest dihedral angle, in degrees.
 void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
                     double& max_deg);
