@@ -122,6 +122,18 @@ struct Outcome {
     double h_input_max = 0, h_added_max = 0;
 };
 
+// The shared surface `name` (../shared/data/surfaces/name.off) in `out`;
+// false, saying the test is skipped, on a machine without ../shared.
+bool shared_surface(const std::string& name, cbr::test::OffSurface& out) {
+    const std::string dir = cbr::test::shared_data_dir();
+    if (dir.empty()) {
+        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
+        return false;
+    }
+    REQUIRE(cbr::test::read_off(dir + "/surfaces/" + name + ".off", out));
+    return true;
+}
+
 // Delaunay, recovery, regions, refinement through the core; then every
 // exact check of the header comment. `min_average`: the threshold on the
 // average radius ratio.
@@ -546,11 +558,6 @@ TEST_CASE("refine: optimisation is what lifts the quality") {
 }
 
 TEST_CASE("refine: shared surfaces that recover today") {
-    const std::string dir = cbr::test::shared_data_dir();
-    if (dir.empty()) {
-        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return;
-    }
     // Surfaces recovered today (tests/test_recover_surfaces.cpp, kRecovered),
     // the small and medium ones; the last four need Steiner points.
     struct Case {
@@ -584,7 +591,7 @@ TEST_CASE("refine: shared surfaces that recover today") {
         const std::string name = c.name;
         CAPTURE(name);
         cbr::test::OffSurface off;
-        REQUIRE(cbr::test::read_off(dir + "/surfaces/" + c.name + ".off", off));
+        if (!shared_surface(name, off)) return;
         refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, c.min_average, c.size_met,
                          c.steiner_clean);
     }
@@ -600,13 +607,8 @@ TEST_CASE("refine: ridge slivers on a tessellated sphere go through the shell of
     // dihedral angle 0.9 deg. A point in the shell of that edge, placed by
     // the pattern search, does: every tetrahedron above q = 0.1 (TetGen
     // -pYq1.414: minimum dihedral 7.3 deg on this surface).
-    const std::string dir = cbr::test::shared_data_dir();
-    if (dir.empty()) {
-        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return;
-    }
     cbr::test::OffSurface off;
-    REQUIRE(cbr::test::read_off(dir + "/surfaces/wildmeshing-csg-ball.off", off));
+    if (!shared_surface("wildmeshing-csg-ball", off)) return;
     const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.75, false);
     CHECK(out.stats.sliver_points >= 1);
     CHECK(out.quality.minimum > 0.1);
@@ -619,13 +621,8 @@ TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {
     // size from a vertex their corrected cavity kept (two field points
     // 5e-6 apart: minimum dihedral angle 0.004 deg), and slivers spanning
     // two input triangles stayed. TetGen -pYq1.414 reaches 3.9 deg here.
-    const std::string dir = cbr::test::shared_data_dir();
-    if (dir.empty()) {
-        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return;
-    }
     cbr::test::OffSurface off;
-    REQUIRE(cbr::test::read_off(dir + "/surfaces/common3d-fandisk.off", off));
+    if (!shared_surface("common3d-fandisk", off)) return;
     // (Some tetrahedra at its thinnest parts stay over the size bound,
     // reported exactly: size_met false.)
     const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.8, false);
@@ -734,15 +731,10 @@ TEST_CASE("refine: no bad element touches a Steiner point (suppression retried, 
     // checked exactly (refine_and_check: valid, surface and input points
     // kept, regions and volumes kept, size bound as reported, the Steiner
     // points left numbered right after the input points).
-    const std::string dir = cbr::test::shared_data_dir();
-    if (dir.empty()) {
-        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return;
-    }
     for (const std::string name : {"thingicsg-cylinder", "thingiverse-mouth", "thingiverse-feeder-guide-arm"}) {
         CAPTURE(name);
         cbr::test::OffSurface off;
-        REQUIRE(cbr::test::read_off(dir + "/surfaces/" + name + ".off", off));
+        if (!shared_surface(name, off)) return;
         const Surface s{off.xyz, off.tris};
         cbr::refine::RefineOptions without;
         without.steiner_suppression = false;
@@ -762,13 +754,8 @@ TEST_CASE("cbr_mesh_refine: suppressed Steiner points leave the point list") {
     // cbr_mesh_steiner_points report the Steiner points left, numbered
     // right after the caller's points (1-based here), and every point
     // returned is a corner of some tetrahedron.
-    const std::string dir = cbr::test::shared_data_dir();
-    if (dir.empty()) {
-        MESSAGE("skipped: ../shared/data/surfaces not found (set CBR_SHARED_DATA_DIR)");
-        return;
-    }
     cbr::test::OffSurface off;
-    REQUIRE(cbr::test::read_off(dir + "/surfaces/thingiverse-mouth.off", off));
+    if (!shared_surface("thingiverse-mouth", off)) return;
     const auto n = static_cast<std::int64_t>(off.xyz.size() / 3);
     cbr_mesh* m = nullptr;
     REQUIRE(cbr_mesh_create(&m) == CBR_OK);
