@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geom/intersect.hpp"
+#include "geom/segment_point.hpp"
 
 namespace {
 
@@ -606,4 +607,35 @@ TEST_CASE("triangle/triangle agrees with an explicit exact construction") {
         CHECK(s[0] > 100);
         CHECK(s[1] > 100);
     }
+}
+
+// Conforming recovery's rounded crossing points (geom/segment_point.hpp):
+// a parameter so small that p + s (q - p) rounds to p must still give a
+// point other than either end, on the segment (between the ends on every
+// axis), and one that does not round to an end must be left as it is.
+TEST_CASE("segment point: a crossing within rounding of an end is moved off it") {
+    const double p[3] = {12.5, -3.25, 7.0};
+    const double q[3] = {13.5, -2.25, 9.0};
+    for (double s : {1e-300, 1e-18, 1e-17}) {
+        double out[3];
+        cbr::geom::segment_point_off_ends(p, q, s, out);
+        CHECK_FALSE(cbr::geom::same_point(out, p));
+        CHECK_FALSE(cbr::geom::same_point(out, q));
+        for (int k = 0; k < 3; ++k) {
+            CHECK(out[k] >= std::min(p[k], q[k]));
+            CHECK(out[k] <= std::max(p[k], q[k]));
+        }
+        CHECK(std::abs(out[0] - p[0]) < 1e-12);  // only a few ulps along
+    }
+    for (double s : {1 - 1e-18, 1 - 1e-17}) {  // the same next to q
+        double out[3];
+        cbr::geom::segment_point_off_ends(p, q, s, out);
+        CHECK_FALSE(cbr::geom::same_point(out, q));
+        CHECK(std::abs(out[2] - q[2]) < 1e-12);
+    }
+    double mid[3];
+    cbr::geom::segment_point_off_ends(p, q, 0.25, mid);
+    CHECK(mid[0] == 12.75);
+    CHECK(mid[1] == -3.0);
+    CHECK(mid[2] == 7.5);
 }

@@ -8,6 +8,7 @@
 
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
+#include "geom/segment_point.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/flips.hpp"
 #include "recover/protected_insertion.hpp"
@@ -44,7 +45,11 @@ void segment_plane_point(const double* p, const double* q, const double* a, cons
     double s = vp / (vp - vq);
     if (!(s > 0.0)) s = 0.5;  // only rounding can do this: stay on the segment
     if (s >= 1.0) s = 0.5;
-    for (int k = 0; k < 3; ++k) out[k] = p[k] + s * (q[k] - p[k]);
+    // Rounded next to p or q it would be that vertex again, and its
+    // insertion refused ("p coincides with a vertex of the mesh": feeder
+    // body, with other flips before, a chain end that rounding had put
+    // next to a face of its own ball).
+    geom::segment_point_off_ends(p, q, s, out);
 }
 
 // The point of segment pq nearest to line xy (the segments cross, so it is
@@ -61,7 +66,7 @@ void segment_line_point(const double* p, const double* q, const double* x, const
     const double denom = a * e - b * b;
     double s = denom > 0 ? (b * f - c * e) / denom : 0.5;
     if (!(s > 0.0) || s >= 1.0) s = 0.5;
-    for (int k = 0; k < 3; ++k) out[k] = p[k] + s * d1[k];
+    geom::segment_point_off_ends(p, q, s, out);
 }
 
 bool contains_closed(const mesh::TetMesh& m, TetId t, const double* p) {
