@@ -345,6 +345,56 @@ TEST_CASE("a flip-down that gives up is rolled back exactly") {
     CHECK(rolled_back * 2 >= pts.size());
 }
 
+TEST_CASE("suppression: a retetrahedralization the caller refuses is put back exactly") {
+    Domain d = convex_domain(17, 40, true);
+    const auto pts = insert_points(d.m, cbr::test::random_points(20, 917, 0.05, 0.95));
+    REQUIRE(pts.size() >= 15);
+    const std::set<Key3> constraints = marked_faces(d.m);
+    // Refuses every result: each ball goes back, with its point.
+    SuppressOptions never;
+    never.accept = [](const TetMesh&, const std::vector<TetId>&) { return false; };
+    for (VertexId v : pts) {
+        const std::set<Tet> before = tet_keys(d.m);
+        SuppressReport rep;
+        CHECK_FALSE(suppress_vertex(d.m, v, any_tet_of(d.m, v), {}, &rep, never));
+        CHECK(rep.result == SuppressResult::kRefused);
+        CHECK(tet_keys(d.m) == before);
+        check_valid(d.m);
+        CHECK(marked_faces(d.m) == constraints);
+    }
+    // Refuses tetrahedra with a vertex of a chosen set (three points): the
+    // balls next to one are put back, the others go, and no new
+    // tetrahedron ever has one.
+    const std::set<VertexId> banned(pts.begin(), pts.begin() + 3);
+    SuppressOptions not_at_banned;
+    not_at_banned.accept = [&](const TetMesh& m, const std::vector<TetId>& created) {
+        for (TetId t : created)
+            for (int i = 0; i < 4; ++i)
+                if (banned.count(m.vertex(t, i))) return false;
+        return true;
+    };
+    std::size_t refused = 0, suppressed = 0;
+    for (auto v = pts.begin() + 3; v != pts.end(); ++v) {
+        const std::set<Tet> before = tet_keys(d.m);
+        SuppressReport rep;
+        const bool ok = suppress_vertex(d.m, *v, any_tet_of(d.m, *v), {}, &rep, not_at_banned);
+        check_valid(d.m);
+        CHECK(marked_faces(d.m) == constraints);
+        if (ok) {
+            ++suppressed;
+            for (TetId t : rep.created)
+                for (int i = 0; i < 4; ++i) CHECK(banned.count(d.m.vertex(t, i)) == 0);
+        } else {
+            CHECK(tet_keys(d.m) == before);
+            refused += rep.result == SuppressResult::kRefused;
+        }
+    }
+    MESSAGE("next to a banned point: " << refused << " refused, " << suppressed << " suppressed of "
+                                       << pts.size() - 3);
+    CHECK(refused > 0);
+    CHECK(suppressed > 0);
+}
+
 TEST_CASE("suppress_vertices: passes, list shrinks, deterministic") {
     auto run = [](std::vector<VertexId>& pts, SuppressStats& st) {
         Domain d = convex_domain(8, 60, true);

@@ -37,19 +37,53 @@ double signed_volume(const double* a, const double* b, const double* c, const do
            u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
+bool contains_closed(const mesh::TetMesh& m, TetId t, const double* p) {
+    const VertexId* v = m.vertices(t);
+    for (int f = 0; f < 4; ++f) {
+        const int* k = kFaceVertices[f];
+        if (geom::orient3d(m.point(v[k[0]]), m.point(v[k[1]]), m.point(v[k[2]]), p) < 0) return false;
+    }
+    return true;
+}
+
 // Where segment pq meets the plane of abc (rounded; the caller has checked
-// exactly that it does, in the open segment).
-void segment_plane_point(const double* p, const double* q, const double* a, const double* b, const double* c,
+// exactly that it does, in the open segment), moved off p and q if it
+// rounds onto one of them; false when it did.
+bool segment_plane_point(const double* p, const double* q, const double* a, const double* b, const double* c,
                          double out[3]) {
     const double vp = signed_volume(a, b, c, p), vq = signed_volume(a, b, c, q);
     double s = vp / (vp - vq);
     if (!(s > 0.0)) s = 0.5;  // only rounding can do this: stay on the segment
     if (s >= 1.0) s = 0.5;
-    // Rounded next to p or q it would be that vertex again, and its
-    // insertion refused ("p coincides with a vertex of the mesh": feeder
-    // body, with other flips before, a chain end that rounding had put
-    // next to a face of its own ball).
-    geom::segment_point_off_ends(p, q, s, out);
+    return !geom::segment_point_off_ends(p, q, s, out);
+}
+
+// The middle of the part of segment pq inside finite tetrahedron t
+// (rounded, then checked exactly to lie in t), or false.
+bool middle_in_tet(const mesh::TetMesh& m, TetId t, const double* p, const double* q, double out[3]) {
+    const VertexId* v = m.vertices(t);
+    double lo = 0, hi = 1;
+    for (int f = 0; f < 4; ++f) {
+        const int* k = kFaceVertices[f];
+        const double* a = m.point(v[k[0]]);
+        const double* b = m.point(v[k[1]]);
+        const double* c = m.point(v[k[2]]);
+        // Positive on t's side of the face (the side of its fourth vertex).
+        const double inside = signed_volume(a, b, c, m.point(v[f])) > 0 ? 1.0 : -1.0;
+        const double vp = inside * signed_volume(a, b, c, p), vq = inside * signed_volume(a, b, c, q);
+        if (vp >= 0 && vq >= 0) continue;
+        if (vp < 0 && vq < 0) return false;
+        const double s = vp / (vp - vq);
+        if (vp < 0) lo = std::max(lo, s);
+        else hi = std::min(hi, s);
+    }
+    if (!(lo < hi)) return false;
+    const double s = 0.5 * (lo + hi);
+    double x[3];
+    for (int k = 0; k < 3; ++k) x[k] = p[k] + s * (q[k] - p[k]);
+    if (geom::same_point(x, p) || geom::same_point(x, q) || !contains_closed(m, t, x)) return false;
+    std::copy_n(x, 3, out);
+    return true;
 }
 
 // The point of segment pq nearest to line xy (the segments cross, so it is
@@ -69,14 +103,6 @@ void segment_line_point(const double* p, const double* q, const double* x, const
     geom::segment_point_off_ends(p, q, s, out);
 }
 
-bool contains_closed(const mesh::TetMesh& m, TetId t, const double* p) {
-    const VertexId* v = m.vertices(t);
-    for (int f = 0; f < 4; ++f) {
-        const int* k = kFaceVertices[f];
-        if (geom::orient3d(m.point(v[k[0]]), m.point(v[k[1]]), m.point(v[k[2]]), p) < 0) return false;
-    }
-    return true;
-}
 
 }  // namespace
 
@@ -180,9 +206,18 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
             case Crossing::kFace: {
                 const VertexId* v = m_.vertices(c.tet);
                 const int* k = kFaceVertices[c.face];
-                segment_plane_point(m_.point(q), m_.point(b), m_.point(v[k[0]]), m_.point(v[k[1]]),
-                                    m_.point(v[k[2]]), xyz);
-                cavity = {c.tet, mesh::facet_tet(m_.neighbor(c.tet, c.face))};
+                const TetId beyond = mesh::facet_tet(m_.neighbor(c.tet, c.face));
+                // A crossing that rounds onto q (a chain end that rounding put
+                // next to a face of its own ball: feeder body, with another
+                // flip budget before) would be q again; a point an ulp from q
+                // would be no better, its ball too thin to split later. The
+                // middle of the segment's part in the tetrahedron beyond is a
+                // point of the segment that clears both.
+                if (!segment_plane_point(m_.point(q), m_.point(b), m_.point(v[k[0]]), m_.point(v[k[1]]),
+                                         m_.point(v[k[2]]), xyz) &&
+                    !m_.is_ghost(beyond))
+                    middle_in_tet(m_, beyond, m_.point(q), m_.point(b), xyz);
+                cavity = {c.tet, beyond};
                 break;
             }
             case Crossing::kEdge: {

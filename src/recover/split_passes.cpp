@@ -25,6 +25,20 @@ bool partial_subface(const mesh::TetMesh& m, const SurfacePoints& points, TetId 
     return (points.is_added(a) || points.is_added(b) || points.is_added(c)) && points.is_subface(a, b, c);
 }
 
+// The four vertices of finite tetrahedron t are points of one input
+// triangle (which then has an added point: it has three corners).
+bool flat_in_a_triangle(const mesh::TetMesh& m, const SurfacePoints& points, TetId t,
+                        std::vector<std::size_t>& faces) {
+    const VertexId* v = m.vertices(t);
+    int added = 0;
+    while (added < 4 && !points.is_added(v[added])) ++added;
+    if (added == 4) return false;
+    points.faces_of(v[added], faces);
+    return std::any_of(faces.begin(), faces.end(), [&](std::size_t f) {
+        return std::all_of(v, v + 4, [&](VertexId x) { return points.belongs_to(x, f); });
+    });
+}
+
 // Suppresses the Steiner points in the ball of added point e (see the
 // header); returns how many went, and erases them from `steiner`.
 std::size_t suppress_around(mesh::TetMesh& m, const SurfacePoints& points, std::vector<TetId>& incident, VertexId e,
@@ -45,17 +59,30 @@ std::size_t suppress_around(mesh::TetMesh& m, const SurfacePoints& points, std::
             for (int f = 0; f < 4; ++f)
                 if (partial_subface(m, points, t, f)) m.set_constrained(t, f, true);
     const mesh::EdgeProtect links = [&points](VertexId a, VertexId b) { return points.is_chain_link(a, b); };
-    const std::size_t gone = suppress_vertices(m, candidates, links);
+    // A ball whose link holds four points of one triangle must not be
+    // rebuilt with a tetrahedron of those four: nearly coplanar, both its
+    // upper and its lower face would count as sub-faces, and the fans of
+    // the next splits would border more than two wedges (feeder body, with
+    // another flip budget before).
+    SuppressOptions options;
+    std::vector<std::size_t> faces;
+    options.accept = [&](const mesh::TetMesh& mesh, const std::vector<TetId>& created) {
+        return std::none_of(created.begin(), created.end(),
+                            [&](TetId t) { return !mesh.is_ghost(t) && flat_in_a_triangle(mesh, points, t, faces); });
+    };
+    const std::size_t gone = suppress_vertices(m, candidates, links, nullptr, options);
     for (TetId t = 0; t < m.slot_count(); ++t)
         if (!m.is_free(t))
             for (int f = 0; f < 4; ++f)
                 if (m.is_constrained(t, f) && partial_subface(m, points, t, f)) m.set_constrained(t, f, false);
+    // Also when nothing went: a ball put back (refused, or flips undone)
+    // can sit in other slots.
+    incident = mesh::incident_tets(m);
     if (gone == 0) return 0;
     const std::set<VertexId> kept(candidates.begin(), candidates.end());
     steiner.erase(std::remove_if(steiner.begin(), steiner.end(),
                                  [&](VertexId v) { return near.count(v) != 0 && kept.count(v) == 0; }),
                   steiner.end());
-    incident = mesh::incident_tets(m);
     return gone;
 }
 

@@ -276,6 +276,7 @@ const char* to_string(SuppressResult r) {
         case SuppressResult::kOnConstraint: return "on a constraint face";
         case SuppressResult::kProtectedEdge: return "protected edge";
         case SuppressResult::kNoRetriangulation: return "no retriangulation of the ball without it";
+        case SuppressResult::kRefused: return "the retriangulation was refused";
     }
     return "?";
 }
@@ -328,6 +329,14 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     rep.result = SuppressResult::kSuppressed;
     for (TetId t : region)
         if (live(m, t)) rep.created.push_back(t);
+    if (options.accept && !options.accept(m, rep.created)) {
+        const std::set<TetId> now(rep.created.begin(), rep.created.end());
+        rep.created.clear();
+        rollback(m, now, original, &rep.created);
+        rep.result = SuppressResult::kRefused;
+        rep.method = SuppressMethod::kNone;
+        return false;
+    }
     return true;
 }
 

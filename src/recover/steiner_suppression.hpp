@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "mesh/flips.hpp"
@@ -31,7 +32,8 @@ enum class SuppressResult {
     kHullVertex,       // v is on the hull (its ball has ghosts): not a Steiner point of the interior
     kOnConstraint,     // a constraint face contains v: removing v would remove it
     kProtectedEdge,    // an edge v-x is protected: every edge at v disappears with v
-    kNoRetriangulation // neither contraction nor flipping the ball down worked
+    kNoRetriangulation, // neither contraction nor flipping the ball down worked
+    kRefused            // SuppressOptions::accept refused the new tetrahedra (the ball is back)
 };
 
 const char* to_string(SuppressResult r);
@@ -50,6 +52,9 @@ struct SuppressOptions {
     // needs (each kept step lowers the degree of v or enables a step that
     // does). A smaller bound gives up earlier (and rolls back).
     std::size_t max_flip_steps = 0;
+    // When set, the tetrahedra that fill the ball without v must pass it,
+    // or the ball is put back and v stays (kRefused).
+    std::function<bool(const mesh::TetMesh&, const std::vector<mesh::TetId>& created)> accept;
 };
 
 struct SuppressReport {
