@@ -1123,6 +1123,38 @@ void recover_pierced(int mask, double far) {
 
 }  // namespace
 
+TEST_CASE("recover_faces: the feeder body from another flip state (deepest round's budget 10,000)") {
+    // With a quarter of the default budget, the flips leave the feeder
+    // body a mesh on which three steps used to fail in turn: a face
+    // crossing that rounded onto its chain end (conforming recovery: "p
+    // coincides with a vertex of the mesh"), the suppression around stalled
+    // splits rebuilding balls with flat tetrahedra of one triangle ("a fan
+    // borders more than two wedges"), and the splits after it starting from
+    // stale incident tetrahedra. About 25 s (Release).
+    const std::string dir = cbr::test::shared_data_dir();
+    if (dir.empty()) {
+        MESSAGE("no ../shared data: skipped");
+        return;
+    }
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(dir + "/surfaces/thingiverse-feeder-body.off", s));
+    Case c;
+    build(c, s.xyz, s.tris);
+    TetMesh& m = c.m();
+    cbr::recover::RecoveryOptions options;
+    options.deepest_flip_budget = 10000;
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats, options);
+    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+    require_valid(m, "after recover_faces");
+    CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+    for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+    CHECK(stats.conforming_points > 0);  // the path through conforming recovery and splitting
+    MESSAGE("feeder body, budget 10,000: missing " << stats.missing_faces << ", by flips " << stats.recovered_by_flips
+                                                   << ", conforming " << stats.conforming_points << ", Steiner "
+                                                   << stats.steiner_generated << " -> " << stats.steiner_remaining);
+}
+
 TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)") {
     // Same inputs as the ball transformation test above. Before the
     // crossing's tetrahedra were kept whole by the cavity correction,

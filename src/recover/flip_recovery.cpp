@@ -392,7 +392,7 @@ private:
 
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo,
-                                          FlipRounds rounds) {
+                                          FlipRounds rounds, int deepest_budget) {
     FlipRecovery flips(m, faces, memo);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
@@ -403,7 +403,8 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     // disturb before their own turn.
     const std::size_t round_count = std::size(kSearches) - (rounds == FlipRounds::kAll ? 0 : 1);
     for (std::size_t r = 0; r < round_count; ++r) {
-        const Search& search = kSearches[r];
+        Search search = kSearches[r];
+        if (r + 1 == std::size(kSearches) && deepest_budget > 0) search.budget = deepest_budget;
         bool progress = true;
         for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
             Search this_pass = search;

@@ -30,9 +30,11 @@ enum class FlipRounds { kAll, kWithoutDeepest };
 
 // Tries to recover the faces `missing` (indices into `faces`); marks the
 // recovered ones as constraint faces; returns those still missing, in
-// increasing order.
+// increasing order. `deepest_budget`: edge removals a face in the first
+// pass of the deepest round (0: kSearches' own, 40,000); tests vary it to
+// reach the other mesh states that flips can leave to the later steps.
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn,
-                                          FlipRounds rounds = FlipRounds::kAll);
+                                          FlipRounds rounds = FlipRounds::kAll, int deepest_budget = 0);
 
 }  // namespace cbr::recover

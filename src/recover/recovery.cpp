@@ -62,7 +62,8 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     // recover cost conforming recovery less (feeder body: 2.8 s for 27
     // faces; Steiner points inside on the hard surfaces 148 -> 149).
     const FlipRounds first_rounds = options.deep_flips ? FlipRounds::kAll : FlipRounds::kWithoutDeepest;
-    std::vector<std::size_t> after_flips = recover_by_flips(m, faces, missing, FlipMemo::kOn, first_rounds);
+    std::vector<std::size_t> after_flips =
+        recover_by_flips(m, faces, missing, FlipMemo::kOn, first_rounds, options.deepest_flip_budget);
     stats.recovered_by_flips = missing.size() - after_flips.size();
     if (!after_flips.empty()) {
         const std::size_t unblocking = insert_unblocking_points(m, faces, after_flips, result.steiner);

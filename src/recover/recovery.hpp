@@ -39,6 +39,10 @@ struct RecoveryOptions {
     // The deepest round of flip searches before the interior Steiner points
     // (CBR_PARAM_RECOVERY_DEEP_FLIPS): fewer Steiner points, more time.
     bool deep_flips = true;
+    // Edge removals a face in that round (0: the default of
+    // flip_recovery.cpp). Not in the C API: tests vary it to reach other
+    // mesh states for the steps after the flips.
+    int deepest_flip_budget = 0;
 };
 
 // Recovers every triangle of `faces` as a face of m, marking them as
