@@ -161,8 +161,13 @@ void SliverRemover::rate_cavity(TetId sliver, double floor, Search search, Choic
     // The best candidate with a valid star, then climbed (climb).
     double q_start = 0;
     Point start = {0, 0, 0};
+    // A star at or below `useless` can neither be climbed from nor taken,
+    // so star_quality may stop as soon as it is known to be (the best
+    // candidate above it, the one that counts, is rated in full).
+    const double useless =
+        search == Search::kClimb ? std::nextafter(kClimbFrom * floor, 0.0) : std::max(bar, best.quality);
     for (const Point& p : candidates_) {
-        const double q = star_quality(p.data(), q_start);
+        const double q = star_quality(p.data(), std::max(q_start, useless));
         if (q > q_start) q_start = q, start = p;
     }
     if (q_start == 0) return;
