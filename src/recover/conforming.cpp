@@ -103,7 +103,6 @@ void segment_line_point(const double* p, const double* q, const double* x, const
     geom::segment_point_off_ends(p, q, s, out);
 }
 
-
 }  // namespace
 
 ConformingRecovery::ConformingRecovery(mesh::TetMesh& m, SurfacePoints& points)
