@@ -181,7 +181,17 @@ bool ConformingRecovery::recover_face(std::size_t face) {
     const Triangle& t = points_.faces().triangle(face);
     for (int k = 0; k < 3; ++k)
         if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
-    return recover_interior(face) && remove_flat_tets(face) && disk_is_complete(face);
+    // The edge removals that take flat tetrahedra away can make an edge
+    // that crosses the face again (between points on either side of it,
+    // in the ring of the removed edge: a pierced tetrahedron, mask 57 with
+    // far points): the interior is searched again until no flat
+    // tetrahedron is left.
+    for (std::size_t round = 0; round < kMaxInsertionsPerConstraint; ++round) {
+        if (!recover_interior(face)) return false;
+        if (find_flat_tet(face) == kNoTet) return disk_is_complete(face);
+        if (!remove_flat_tets(face)) return false;
+    }
+    return fail("flat tetrahedra keep coming back in one face");
 }
 
 // §5.2 for a missing edge ab: walk from a towards b; where the segment
