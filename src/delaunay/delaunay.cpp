@@ -18,8 +18,6 @@ namespace {
 // reallocation (and its transient doubling of memory) rare.
 constexpr std::size_t kTetsPerPointReserve = 7;
 
-bool same_point(const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; }
-
 // Among points [0, n), which have no tetrahedron yet, two with identical
 // coordinates, found by sorting; outcome is left alone if there are none.
 void find_duplicate(const mesh::TetMesh& m, std::size_t n, InsertOutcome& outcome) {
@@ -30,7 +28,7 @@ void find_duplicate(const mesh::TetMesh& m, std::size_t n, InsertOutcome& outcom
         return c < 0 || (c == 0 && a < b);
     });
     for (std::size_t i = 1; i < ids.size(); ++i)
-        if (same_point(m.point(ids[i - 1]), m.point(ids[i]))) {
+        if (geom::same_point(m.point(ids[i - 1]), m.point(ids[i]))) {
             outcome = {false, std::min(ids[i - 1], ids[i]), std::max(ids[i - 1], ids[i])};
             return;
         }
@@ -103,7 +101,7 @@ bool Delaunay::start_triangulation(std::size_t n, std::vector<VertexId>& rest, I
     for (VertexId v = 1; v < n && found < 4; ++v) {
         const double* p = mesh_.point(v);
         bool independent = false;
-        if (found == 1) independent = !same_point(mesh_.point(pick[0]), p);
+        if (found == 1) independent = !geom::same_point(mesh_.point(pick[0]), p);
         if (found == 2) independent = !geom::collinear(mesh_.point(pick[0]), mesh_.point(pick[1]), p);
         if (found == 3)
             independent = geom::orient3d(mesh_.point(pick[0]), mesh_.point(pick[1]), mesh_.point(pick[2]), p) != 0;

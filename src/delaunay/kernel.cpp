@@ -237,8 +237,7 @@ int Kernel::index_in(TetId t, VertexId v) const {
 VertexId Kernel::coincident_vertex(TetId t, const double* p) const {
     if (m_.is_ghost(t)) return kGhostVertex;
     for (int i = 0; i < 4; ++i) {
-        const double* q = m_.point(m_.vertex(t, i));
-        if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) return m_.vertex(t, i);
+        if (geom::same_point(m_.point(m_.vertex(t, i)), p)) return m_.vertex(t, i);
     }
     return kGhostVertex;
 }

@@ -34,8 +34,6 @@ namespace {
 using xp::Expansion;
 using xp::minor2;
 
-bool same_point(const double* p, const double* q) { return p == q || (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]); }
-
 // Four points with one coordinate equal lie in a plane parallel to the
 // axes: a column of b-a, c-a, d-a is exactly zero, and so is the
 // determinant, whatever the other coordinates.

@@ -38,6 +38,9 @@ struct PredicateCounters {
     std::uint64_t insphere_perturbed = 0;  // exact value was 0, SoS decided
 };
 
+// The two points have identical coordinates.
+inline bool same_point(const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1] && p[2] == q[2]; }
+
 // Sign of det[b-a, c-a, d-a]: +1 when (a, b, c, d) is positively oriented
 // (d on the side of plane abc that (b-a) x (c-a) points to), -1 when
 // negatively oriented, 0 when the four points are coplanar.

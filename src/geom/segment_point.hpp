@@ -6,9 +6,9 @@
 
 #include <limits>
 
-namespace cbr::geom {
+#include "geom/predicates.hpp"
 
-inline bool same_point(const double* x, const double* y) { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; }
+namespace cbr::geom {
 
 // p + s (q - p) for s in (0, 1), rounded, and moved along pq by steps
 // doubling from an ulp until it is neither p nor q (p != q). True when it

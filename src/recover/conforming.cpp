@@ -68,9 +68,9 @@ bool middle_in_tet(const mesh::TetMesh& m, TetId t, const double* p, const doubl
         const double* a = m.point(v[k[0]]);
         const double* b = m.point(v[k[1]]);
         const double* c = m.point(v[k[2]]);
-        // Positive on t's side of the face (the side of its fourth vertex).
-        const double inside = signed_volume(a, b, c, m.point(v[f])) > 0 ? 1.0 : -1.0;
-        const double vp = inside * signed_volume(a, b, c, p), vq = inside * signed_volume(a, b, c, q);
+        // Positive on t's side of the face (t is positively oriented: the
+        // sign of orient3d, which contains_closed tests).
+        const double vp = signed_volume(a, b, c, p), vq = signed_volume(a, b, c, q);
         if (vp >= 0 && vq >= 0) continue;
         if (vp < 0 && vq < 0) return false;
         const double s = vp / (vp - vq);
@@ -187,9 +187,9 @@ bool ConformingRecovery::recover_face(std::size_t face) {
     // far points): the interior is searched again until no flat
     // tetrahedron is left.
     for (std::size_t round = 0; round < kMaxInsertionsPerConstraint; ++round) {
-        if (!recover_interior(face)) return false;
-        if (find_flat_tet(face) == kNoTet) return disk_is_complete(face);
-        if (!remove_flat_tets(face)) return false;
+        std::size_t removed = 0;
+        if (!recover_interior(face) || !remove_flat_tets(face, removed)) return false;
+        if (removed == 0) return disk_is_complete(face);
     }
     return fail("flat tetrahedra keep coming back in one face");
 }
@@ -328,8 +328,8 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
 // face) is flat, and its upper and lower faces would both be sub-faces.
 // Each is removed with an edge between two of its vertices that the face
 // does not need (Definition 5.8, edge removal).
-bool ConformingRecovery::remove_flat_tets(std::size_t face) {
-    for (std::size_t round = 0; round < kMaxInsertionsPerConstraint; ++round) {
+bool ConformingRecovery::remove_flat_tets(std::size_t face, std::size_t& removed) {
+    for (removed = 0; removed < kMaxInsertionsPerConstraint; ++removed) {
         const TetId t = find_flat_tet(face);
         if (t == kNoTet) return true;
         if (!remove_flat_tet(face, t)) return fail("a flat tetrahedron in a face could not be removed");

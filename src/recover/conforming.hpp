@@ -43,7 +43,8 @@ public:
 private:
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
     bool recover_interior(std::size_t face);
-    bool remove_flat_tets(std::size_t face);
+    // Every flat tetrahedron of the face; `removed`: how many there were.
+    bool remove_flat_tets(std::size_t face, std::size_t& removed);
     mesh::TetId find_flat_tet(std::size_t face);
     bool is_flat(mesh::TetId t, std::size_t face) const;
     bool remove_flat_tet(std::size_t face, mesh::TetId t);

@@ -101,7 +101,7 @@ bool PointSplitting::place_in_wedge(const double* pe, const double* d,
     }
     const auto at = [&](double eps) {
         for (int k = 0; k < 3; ++k) s[k] = pe[k] + eps * u[k];
-        return !(s[0] == pe[0] && s[1] == pe[1] && s[2] == pe[2]) && sees_all(m_, bounds, s.data());
+        return !geom::same_point(s.data(), pe) && sees_all(m_, bounds, s.data());
     };
     if (lo < hi && std::isfinite(hi)) {
         for (const double f : {0.5, 0.25, 0.75, 0.1, 0.9, 0.01, 0.99})

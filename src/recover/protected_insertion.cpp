@@ -142,8 +142,7 @@ bool Cavity::check_start(std::string& why) const {
             why = "start does not contain p";
             return false;
         }
-        const double* q = pt(v[f]);
-        if (q[0] == p_[0] && q[1] == p_[1] && q[2] == p_[2]) {
+        if (geom::same_point(pt(v[f]), p_)) {
             why = "p coincides with a vertex of the mesh";
             return false;
         }
