@@ -96,11 +96,15 @@ void SliverRemover::collect_boundary() {
 // The worst radius ratio of the star of p over the cavity's boundary; -1
 // when a boundary face does not see p strictly (exact). Stops early with
 // some value at most `floor` once the star is known to be no better than
-// that (the caller wants only stars above it).
+// that (the caller wants only stars above it). Every face is tested for
+// sight before any is rated: most candidates have no valid star (chain
+// link: 2.8 of 4.4 million), and rating faces first spent three quarters
+// of the radius ratios on them.
 double SliverRemover::star_quality(const double* p, double floor) const {
+    for (const BoundaryFace& f : boundary_)
+        if (geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) <= 0) return -1;
     double worst = 1;
     for (const BoundaryFace& f : boundary_) {
-        if (geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) <= 0) return -1;
         worst = std::min(worst, radius_ratio(f.corners[0], f.corners[1], f.corners[2], p));
         if (worst <= floor) return worst;
     }
