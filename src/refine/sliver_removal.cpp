@@ -76,6 +76,7 @@ private:
     static constexpr std::uint8_t kInCavity = 1u << 0;
     mesh::SlotMarks marks_;  // kInCavity: the slots of cavity_
     std::vector<BoundaryFace> boundary_;
+    mutable std::size_t blocker_ = 0;  // star_quality: the boundary face that hid the last invalid candidate
     std::vector<Point> candidates_;
     mesh::Shell shell_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
@@ -83,6 +84,7 @@ private:
 
 void SliverRemover::collect_boundary() {
     boundary_.clear();
+    blocker_ = 0;
     for (TetId t : cavity_) {
         const VertexId* v = m_.vertices(t);
         for (int f = 0; f < 4; ++f) {
@@ -101,8 +103,18 @@ void SliverRemover::collect_boundary() {
 // link: 2.8 of 4.4 million), and rating faces first spent three quarters
 // of the radius ratios on them.
 double SliverRemover::star_quality(const double* p, double floor) const {
-    for (const BoundaryFace& f : boundary_)
-        if (geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) <= 0) return -1;
+    // The face that hid the previous candidate first: it hides most of the
+    // next ones too, so an invalid star costs about one test.
+    const auto sees = [&](std::size_t i) {
+        const BoundaryFace& f = boundary_[i];
+        return geom::orient3d(f.corners[0], f.corners[1], f.corners[2], p) > 0;
+    };
+    if (blocker_ < boundary_.size() && !sees(blocker_)) return -1;
+    for (std::size_t i = 0; i < boundary_.size(); ++i)
+        if (i != blocker_ && !sees(i)) {
+            blocker_ = i;
+            return -1;
+        }
     double worst = 1;
     for (const BoundaryFace& f : boundary_) {
         worst = std::min(worst, radius_ratio(f.corners[0], f.corners[1], f.corners[2], p));
