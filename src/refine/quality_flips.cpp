@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/flips.hpp"
 #include "refine/tet_measures.hpp"
@@ -117,10 +118,17 @@ bool Flipper::try_face(TetId t, int f) {
     const std::int32_t region = c_.region(t);
     if (!c_.in_domain(n) || c_.region(n) != region) return false;
     const VertexId d = m_.vertex(t, f), e = m_.vertex(n, facet_face(r));
-    if (!c_.edge_within_size(d, e)) return false;
-    const double old_min = std::min(q(t), q(n));
     const int* k = kFaceVertices[f];
     const VertexId x[3] = {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
+    // The flip exists only when de crosses the face's interior: the three
+    // new tetrahedra turn the same way (exact). Tested before any quality:
+    // on igea 148 of 3.4 million tries flip, and most fail here.
+    int turn[3];
+    for (int i = 0; i < 3; ++i)
+        turn[i] = geom::orient3d(m_.point(x[i]), m_.point(x[(i + 1) % 3]), m_.point(d), m_.point(e));
+    if (turn[0] == 0 || turn[1] != turn[0] || turn[2] != turn[0]) return false;
+    if (!c_.edge_within_size(d, e)) return false;
+    const double old_min = std::min(q(t), q(n));
     double new_min = 1;
     for (int i = 0; i < 3; ++i) new_min = std::min(new_min, q(x[i], x[(i + 1) % 3], d, e));
     if (new_min <= old_min * kGain) return false;
