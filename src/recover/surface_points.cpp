@@ -1,13 +1,14 @@
 #include "recover/surface_points.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace cbr::recover {
 
 using mesh::VertexId;
 
 SurfacePoints::SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_count)
-    : faces_(faces), corner_first_(vertex_count + 1, 0) {
+    : faces_(faces), corner_first_(vertex_count + 1, 0), first_new_(static_cast<VertexId>(vertex_count)) {
     for (std::size_t i = 0; i < faces_.size(); ++i)
         for (VertexId v : faces_.triangle(i)) ++corner_first_[v + 1];
     for (std::size_t v = 0; v < vertex_count; ++v) corner_first_[v + 1] += corner_first_[v];
@@ -19,20 +20,30 @@ SurfacePoints::SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_co
     }
 }
 
+SurfacePoints::Added& SurfacePoints::record(VertexId p) {
+    if (p < first_new_) throw std::logic_error("SurfacePoints: an input point cannot be an added point");
+    if (p - first_new_ >= added_.size()) added_.resize(p - first_new_ + 1);
+    return added_[p - first_new_];
+}
+
 void SurfacePoints::add_edge_point(VertexId p, VertexId a, VertexId b) {
-    added_[p] = Added{a, b, npos};
+    record(p) = Added{a, b, npos, true};
     order_.push_back(p);
 }
 
 void SurfacePoints::add_face_point(VertexId p, std::size_t face) {
-    added_[p] = Added{0, 0, face};
+    record(p) = Added{0, 0, face, true};
     order_.push_back(p);
 }
 
-void SurfacePoints::remove(VertexId p) { added_.erase(p); }
+void SurfacePoints::remove(VertexId p) {
+    if (find_added(p)) added_[p - first_new_].live = false;
+}
 
 bool SurfacePoints::on_edge(VertexId v, VertexId* a, VertexId* b, std::size_t* face) const {
-    const Added& x = added_.at(v);
+    const Added* found = find_added(v);
+    if (!found) throw std::out_of_range("SurfacePoints::on_edge: not an added point");
+    const Added& x = *found;
     if (x.face != npos) {
         if (face) *face = x.face;
         return false;
@@ -44,11 +55,10 @@ bool SurfacePoints::on_edge(VertexId v, VertexId* a, VertexId* b, std::size_t* f
 
 void SurfacePoints::faces_of(VertexId v, std::vector<std::size_t>& out) const {
     out.clear();
-    const auto it = added_.find(v);
-    if (it != added_.end()) {
-        if (it->second.face != npos) out.push_back(it->second.face);
+    if (const Added* x = find_added(v)) {
+        if (x->face != npos) out.push_back(x->face);
         else
-            for (std::uint32_t f : faces_of_edge(it->second.a, it->second.b)) out.push_back(f);
+            for (std::uint32_t f : faces_of_edge(x->a, x->b)) out.push_back(f);
         return;
     }
     if (v + 1 >= corner_first_.size()) return;
@@ -58,9 +68,9 @@ void SurfacePoints::faces_of(VertexId v, std::vector<std::size_t>& out) const {
 bool SurfacePoints::belongs_to(VertexId v, std::size_t face) const {
     const Triangle& t = faces_.triangle(face);
     if (v == t[0] || v == t[1] || v == t[2]) return true;
-    const auto it = added_.find(v);
-    if (it == added_.end()) return false;
-    const Added& x = it->second;
+    const Added* found = find_added(v);
+    if (!found) return false;
+    const Added& x = *found;
     if (x.face != npos) return x.face == face;
     const auto corner = [&](VertexId c) { return c == t[0] || c == t[1] || c == t[2]; };
     return corner(x.a) && corner(x.b);
@@ -71,9 +81,8 @@ std::size_t SurfacePoints::common_face(VertexId x, VertexId y, VertexId z) const
     // Candidates from the vertex with the fewest triangles: an added point
     // has one or a few, a corner its whole umbrella.
     const VertexId pick = is_added(x) ? x : is_added(y) ? y : z;
-    std::vector<std::size_t> candidates;
-    faces_of(pick, candidates);
-    for (std::size_t f : candidates)
+    faces_of(pick, candidates_);
+    for (std::size_t f : candidates_)
         if (belongs_to(x, f) && belongs_to(y, f) && belongs_to(z, f)) return f;
     return npos;
 }
@@ -83,13 +92,13 @@ std::size_t SurfacePoints::common_face(VertexId x, VertexId y, VertexId z) const
 // the only candidate.
 bool SurfacePoints::on_one_edge(VertexId x, VertexId y, VertexId z) const {
     for (const VertexId v : {x, y, z}) {
-        const auto it = added_.find(v);
-        if (it == added_.end() || it->second.face != npos) continue;
-        const Added& e = it->second;
+        const Added* found = find_added(v);
+        if (!found || found->face != npos) continue;
+        const Added& e = *found;
         const auto on = [&](VertexId w) {
             if (w == e.a || w == e.b) return true;
-            const auto jt = added_.find(w);
-            return jt != added_.end() && jt->second.face == npos && edge_key(jt->second.a, jt->second.b) == edge_key(e.a, e.b);
+            const Added* other = find_added(w);
+            return other && other->face == npos && edge_key(other->a, other->b) == edge_key(e.a, e.b);
         };
         return on(x) && on(y) && on(z);
     }
@@ -101,8 +110,8 @@ bool SurfacePoints::is_chain_link(VertexId x, VertexId y) const {
     // them, or xy itself.
     std::uint64_t edge = edge_key(x, y);
     for (const VertexId v : {x, y}) {
-        const auto it = added_.find(v);
-        if (it != added_.end() && it->second.face == npos) edge = edge_key(it->second.a, it->second.b);
+        const Added* found = find_added(v);
+        if (found && found->face == npos) edge = edge_key(found->a, found->b);
     }
     const auto it = chains_.find(edge);
     if (it == chains_.end()) return false;
@@ -137,7 +146,9 @@ void SurfacePoints::set_chain(VertexId a, VertexId b, std::vector<VertexId> chai
 }
 
 void SurfacePoints::remove_from_chain(VertexId p) {
-    const Added& x = added_.at(p);
+    const Added* found = find_added(p);
+    if (!found) throw std::out_of_range("SurfacePoints::remove_from_chain: not an added point");
+    const Added& x = *found;
     auto& c = chains_.at(edge_key(x.a, x.b));
     c.erase(std::find(c.begin(), c.end(), p));
 }

@@ -34,7 +34,7 @@ public:
     // p is no longer a surface point (it was split off the surface).
     void remove(mesh::VertexId p);
 
-    bool is_added(mesh::VertexId v) const { return added_.count(v) != 0; }
+    bool is_added(mesh::VertexId v) const { return find_added(v) != nullptr; }
     // Vertices from this id on were made by the recovery (added points,
     // then Steiner points).
     mesh::VertexId first_new_vertex() const { return static_cast<mesh::VertexId>(corner_first_.size() - 1); }
@@ -75,15 +75,29 @@ private:
         return (std::uint64_t{a} << 32) | b;
     }
     struct Added {
-        mesh::VertexId a, b;  // edge points: the input edge
-        std::size_t face;     // face points: the triangle; npos for edge points
+        mesh::VertexId a = 0, b = 0;  // edge points: the input edge
+        std::size_t face = npos;      // face points: the triangle; npos for edge points
+        bool live = false;            // an added point not yet split off the surface
     };
+    // The record of added point v, or nullptr (an input point, a Steiner
+    // point, or an added point already split).
+    const Added* find_added(mesh::VertexId v) const {
+        if (v < first_new_ || v - first_new_ >= added_.size()) return nullptr;
+        const Added& x = added_[v - first_new_];
+        return x.live ? &x : nullptr;
+    }
+    Added& record(mesh::VertexId p);
 
     const ConstraintFaces& faces_;
     std::vector<std::uint32_t> corner_first_, corner_faces_;  // vertex -> triangles (CSR)
-    std::unordered_map<mesh::VertexId, Added> added_;
+    // Per vertex id from first_new_ on (ids are dense: the points added and
+    // the Steiner points come after the input's), looked up by the hot
+    // sub-face tests without hashing.
+    mesh::VertexId first_new_;
+    std::vector<Added> added_;
     std::unordered_map<std::uint64_t, std::vector<mesh::VertexId>> chains_;  // stored from min id to max id
     std::vector<mesh::VertexId> order_;
+    mutable std::vector<std::size_t> candidates_;  // common_face's scratch: no allocation per test
 };
 
 }  // namespace cbr::recover
