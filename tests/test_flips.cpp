@@ -577,38 +577,6 @@ TEST_CASE("ShellReplacer agrees with replace_tets on random shells") {
     CHECK(verdicts[ReplaceResult::kNotConvex] > 0);
 }
 
-// ring_triangulable is best_ring_triangulation's dynamic program on signs
-// alone: the same verdict on every shell, ghosts in the ring or as an end
-// included (a random mesh, and a grid's coplanar rings and flat hull).
-TEST_CASE("ring_triangulable agrees with best_ring_triangulation") {
-    std::vector<double> grid;
-    for (int x = 0; x < 4; ++x)
-        for (int y = 0; y < 4; ++y)
-            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
-    int verdicts[2] = {0, 0}, with_ghost = 0;
-    for (const TetMesh& m : {delaunay_mesh(cbr::test::random_points(80, 53)), delaunay_mesh(grid)}) {
-        Rng rng(59);
-        for (int trial = 0; trial < 3000; ++trial) {
-            const TetId t = random_live(m, rng);
-            const int i = static_cast<int>(rng() % 4), j = (i + 1 + static_cast<int>(rng() % 3)) % 4;
-            const VertexId u = m.vertex(t, i), v = m.vertex(t, j);
-            Shell s;
-            REQUIRE(shell(m, u, v, t, s));
-            if (s.size() > 12) continue;
-            std::vector<RingTriangle> triangles;
-            const bool best = best_ring_triangulation(m, u, v, s, triangles);
-            CAPTURE(trial);
-            REQUIRE(ring_triangulable(m, u, v, s) == best);
-            ++verdicts[best];
-            with_ghost += s.has_ghost() || u == kGhostVertex || v == kGhostVertex;
-        }
-    }
-    MESSAGE("triangulable " << verdicts[1] << ", not " << verdicts[0] << ", with a ghost " << with_ghost);
-    CHECK(verdicts[0] > 100);
-    CHECK(verdicts[1] > 100);
-    CHECK(with_ghost > 100);
-}
-
 TEST_CASE("flips that would dent the hull are refused") {
     TetMesh m = delaunay_mesh(cbr::test::random_points(100, 13));
     const Snapshot before(m);

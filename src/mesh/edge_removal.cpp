@@ -36,22 +36,7 @@ public:
         return first <= floor ? first : std::min(first, tet(a, c, b, u_));
     }
 
-    // Whether both tetrahedra of ring triangle (i, k, j) are valid: the
-    // test behind triangle()'s -inf, without the quality.
-    bool valid(int i, int k, int j) const {
-        const VertexId a = ring_[static_cast<std::size_t>(i)], b = ring_[static_cast<std::size_t>(k)],
-                       c = ring_[static_cast<std::size_t>(j)];
-        return positive(a, b, c, v_) && positive(a, c, b, u_);
-    }
-
 private:
-    bool positive(VertexId a, VertexId b, VertexId c, VertexId d) const {
-        const VertexId t[4] = {a, b, c, d};
-        for (int g = 0; g < 4; ++g)
-            if (t[g] == kGhostVertex) return ghost(t, g) != -kInf;
-        return geom::orient3d(m_.point(a), m_.point(b), m_.point(c), m_.point(d)) > 0;
-    }
-
     double tet(VertexId a, VertexId b, VertexId c, VertexId d) const {
         const VertexId t[4] = {a, b, c, d};
         for (int g = 0; g < 4; ++g)
@@ -170,23 +155,6 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
     // ranks above every invalid one.
     const double q = 12.0 * std::sqrt(3.0) * det / (sum * std::sqrt(sum));
     return q > 0 ? q : std::numeric_limits<double>::min();
-}
-
-bool ring_triangulable(const TetMesh& m, VertexId u, VertexId v, const Shell& shell) {
-    const int n = static_cast<int>(shell.size());
-    if (n < 3) return false;
-    RingDp& dp = thread_ring_dp();
-    dp.reset(shell.size());  // best: 1 where the sub-polygon has a valid triangulation
-    const RingScorer score(m, u, v, shell, dp.finite);
-    for (int len = 2; len < n; ++len)
-        for (int i = 0; i + len < n; ++i) {
-            const int j = i + len;
-            double& ok = dp.at(i, j);
-            ok = 0;
-            for (int k = i + 1; k < j && ok == 0; ++k)
-                if ((k == i + 1 || dp.at(i, k) > 0) && (k + 1 == j || dp.at(k, j) > 0) && score.valid(i, k, j)) ok = 1;
-        }
-    return dp.at(0, n - 1) > 0;
 }
 
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,

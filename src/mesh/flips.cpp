@@ -144,10 +144,6 @@ FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& s, const
                        std::vector<TetId>* created) {
     if (s.size() < 3 || s.size() > kMaxRemovalShell) return FlipResult::kNotApplicable;
     if (is_protected(protect, u, v)) return FlipResult::kProtectedEdge;
-    // Signs first: most removals that flip recovery tries have no valid
-    // triangulation (feeder body: 9.5 of 12 million), and the signs alone
-    // settle that for a fraction of the qualities' cost.
-    if (!ring_triangulable(m, u, v, s)) return FlipResult::kNoValidTriangulation;
     FlipScratch& scratch = flip_scratch();
     if (!best_ring_triangulation(m, u, v, s, scratch.triangles)) return FlipResult::kNoValidTriangulation;
     return checked(scratch.replacer.replace(m, u, v, s, scratch.triangles, ShellGeometry::kScoredRing, created));

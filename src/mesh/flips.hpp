@@ -105,11 +105,6 @@ std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, 
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                              std::vector<RingTriangle>& triangles, double* min_quality = nullptr);
 
-// Whether some triangulation of the ring is valid (best_ring_triangulation
-// would find one): the same dynamic program on signs alone, each
-// sub-polygon settled by its first valid split.
-bool ring_triangulable(const TetMesh& m, VertexId u, VertexId v, const Shell& shell);
-
 // Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
 // lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when
 // orient3d(a, b, c, d) > 0 (exact), -infinity otherwise.
