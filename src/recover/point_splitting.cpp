@@ -6,12 +6,12 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <unordered_set>
 
 #include "geom/flat_cone.hpp"
 #include "geom/orient2d.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/key_table.hpp"
 #include "mesh/surgery.hpp"
 #include "recover/polygon_triangulation.hpp"
 
@@ -133,22 +133,21 @@ bool PointSplitting::absorbable(VertexId v) const {
 // already taken by a wedge. At most `limit` tetrahedra are taken in.
 // The region stays a set of whole tetrahedra, so whatever point sees all
 // its boundary faces can cone it (tested exactly by the caller).
-void PointSplitting::grow_wedge(int w, const std::map<TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
-                                std::map<TetId, int>& taken, const CrossTest& cross,
+void PointSplitting::grow_wedge(int w, const TetOwners& ball_wedge, std::vector<mesh::FacetRef>& links,
+                                TetOwners& taken, const CrossTest& cross,
                                 std::size_t limit) const {
     const auto in_wedge = [&](TetId t) {
-        const auto b = ball_wedge.find(t);
-        if (b != ball_wedge.end()) return b->second == w;
-        const auto k = taken.find(t);
-        return k != taken.end() && k->second == w;
+        if (const int* b = ball_wedge.find(t)) return *b == w;
+        const int* k = taken.find(t);
+        return k != nullptr && *k == w;
     };
     // One pass over a growing list: whether a face may be crossed never
     // changes, except that a tetrahedron once taken is not taken again; a
     // far face that ends up inside the wedge is dropped at the end.
-    std::unordered_set<mesh::FacetRef> inside;
+    mesh::KeyTable<bool> inside;
     std::size_t grown = 0;
     for (std::size_t i = 0; i < links.size() && grown < limit; ++i) {
-        if (inside.count(links[i])) continue;
+        if (inside.find(links[i])) continue;
         const TetId t = mesh::facet_tet(links[i]);
         const int f = mesh::facet_face(links[i]);
         const auto [a, b, c] = face_vertices(links[i]);
@@ -156,21 +155,21 @@ void PointSplitting::grow_wedge(int w, const std::map<TetId, int>& ball_wedge, s
         if (!cross(m_.point(a), m_.point(b), m_.point(c))) continue;
         const mesh::FacetRef across = m_.neighbor(t, f);
         const TetId n = mesh::facet_tet(across);
-        if (m_.is_ghost(n) || ball_wedge.count(n) || taken.count(n)) continue;
-        taken[n] = w;
+        if (m_.is_ghost(n) || ball_wedge.contains(n) || taken.contains(n)) continue;
+        taken.add(n, w);
         ++grown;
-        inside.insert(links[i]);
+        inside[links[i]] = true;
         for (int g = 0; g < 4; ++g) {
             if (g == mesh::facet_face(across)) continue;
             const mesh::FacetRef beyond = m_.neighbor(n, g);
             if (in_wedge(mesh::facet_tet(beyond))) {
-                inside.insert(beyond);  // now between two tetrahedra of the wedge
+                inside[beyond] = true;  // now between two tetrahedra of the wedge
             } else {
                 links.push_back(mesh::make_facet(n, g));
             }
         }
     }
-    links.erase(std::remove_if(links.begin(), links.end(), [&](mesh::FacetRef r) { return inside.count(r) != 0; }),
+    links.erase(std::remove_if(links.begin(), links.end(), [&](mesh::FacetRef r) { return inside.find(r) != nullptr; }),
                 links.end());
 }
 
@@ -199,13 +198,13 @@ bool PointSplitting::keeps_vertices(const std::vector<TetId>& old, const std::ve
 // an added point (checked again for the whole split by keeps_vertices).
 bool PointSplitting::keeps_region_vertices(int w, const std::vector<std::array<VertexId, 3>>& poly,
                                            const std::vector<mesh::FacetRef>& links,
-                                           const std::map<TetId, int>& taken) const {
+                                           const TetOwners& taken) const {
     std::set<VertexId> boundary;
     for (const auto& b : poly) boundary.insert(b.begin(), b.end());
     for (const mesh::FacetRef r : links)
         for (const VertexId v : face_vertices(r)) boundary.insert(v);
-    for (const auto& [t, owner] : taken) {
-        if (owner != w) continue;
+    for (const TetId t : taken.ids()) {
+        if (*taken.find(t) != w) continue;
         for (int i = 0; i < 4; ++i) {
             const VertexId v = m_.vertex(t, i);
             if (boundary.count(v) == 0 && !absorbable(v)) return false;
@@ -223,15 +222,15 @@ bool PointSplitting::keeps_region_vertices(int w, const std::vector<std::array<V
 // whole grown wedge; the wedge is left as it was otherwise.
 bool PointSplitting::place_by_growing(int w, const double* pe, const double* d,
                                       const std::vector<std::array<VertexId, 3>>& poly, double shortest,
-                                      const std::map<TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
-                                      std::map<TetId, int>& taken, std::array<double, 3>& s) const {
+                                      const TetOwners& ball_wedge, std::vector<mesh::FacetRef>& links,
+                                      TetOwners& taken, std::array<double, 3>& s) const {
     const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (!(dl > 0)) return false;
     for (double f = 0.25; f >= kThinPlacement; f *= 0.25) {
         for (int k = 0; k < 3; ++k) s[k] = pe[k] + f * shortest * d[k] / dl;
         if (!sees_all(m_, poly, s.data())) continue;
         std::vector<mesh::FacetRef> grown = links;
-        std::map<TetId, int> grown_taken = taken;
+        TetOwners grown_taken = taken;
         const double* st = s.data();
         grow_wedge(w, ball_wedge, grown, grown_taken, [st](const double* a, const double* b, const double* c) {
             return geom::orient3d(a, b, c, st) <= 0;
@@ -285,8 +284,8 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         wedge_of[i] = wedge_id[r];
     }
     const int nw = static_cast<int>(wedge_id.size());
-    std::map<TetId, int> ball_wedge;
-    for (int i = 0; i < nb; ++i) ball_wedge[ball[i]] = wedge_of[i];
+    TetOwners ball_wedge;
+    for (int i = 0; i < nb; ++i) ball_wedge.add(ball[i], wedge_of[i]);
     for (FanFace& ff : fan_faces) ff.wedge = wedge_of[ff.wedge];
     if (nw < 2) return fail("the sub-faces around an added point do not cut its ball");
 
@@ -361,7 +360,7 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
         }
     std::vector<std::array<VertexId, 4>> fresh;
     std::vector<TetId> extra_old;
-    std::map<TetId, int> taken;  // tetrahedra outside the ball that a wedge took in, and the wedge
+    TetOwners taken;  // tetrahedra outside the ball that a wedge took in, and the wedge
     std::vector<std::array<double, 3>> apexes;  // coordinates of the Steiner points, in wedge order
     for (int w = 0; w < nw; ++w) {
         std::vector<mesh::FacetRef> links;  // the wedge's faces opposite e
@@ -452,7 +451,7 @@ bool PointSplitting::split(VertexId e, std::vector<VertexId>& steiner) {
 
     std::vector<TetId> old = ball;
     old.insert(old.end(), extra_old.begin(), extra_old.end());
-    for (const auto& [t, w] : taken) old.push_back(t);
+    for (const TetId t : taken.sorted_ids()) old.push_back(t);
     std::vector<VertexId> absorbed;  // earlier Steiner points a grown wedge took in
     if (!keeps_vertices(old, fresh, e, absorbed)) return fail("the new tetrahedra would lose a vertex");
     const std::size_t before = m_.vertex_count();

@@ -43,6 +43,7 @@
 
 #include "mesh/tet_mesh.hpp"
 #include "recover/surface_points.hpp"
+#include "recover/tet_owners.hpp"
 
 namespace cbr::recover {
 
@@ -67,18 +68,18 @@ private:
     bool place_in_wedge(const double* pe, const double* d, const std::vector<std::array<mesh::VertexId, 3>>& bounds,
                         double shortest, std::array<double, 3>& s) const;
     bool place_by_growing(int w, const double* pe, const double* d, const std::vector<std::array<mesh::VertexId, 3>>& poly,
-                          double shortest, const std::map<mesh::TetId, int>& ball_wedge,
-                          std::vector<mesh::FacetRef>& links, std::map<mesh::TetId, int>& taken,
+                          double shortest, const TetOwners& ball_wedge,
+                          std::vector<mesh::FacetRef>& links, TetOwners& taken,
                           std::array<double, 3>& s) const;
     std::array<mesh::VertexId, 3> face_vertices(mesh::FacetRef r) const;
     bool absorbable(mesh::VertexId v) const;
     bool keeps_region_vertices(int w, const std::vector<std::array<mesh::VertexId, 3>>& poly,
-                               const std::vector<mesh::FacetRef>& links, const std::map<mesh::TetId, int>& taken) const;
+                               const std::vector<mesh::FacetRef>& links, const TetOwners& taken) const;
     bool keeps_vertices(const std::vector<mesh::TetId>& old, const std::vector<std::array<mesh::VertexId, 4>>& fresh,
                         mesh::VertexId e, std::vector<mesh::VertexId>& absorbed) const;
     using CrossTest = std::function<bool(const double*, const double*, const double*)>;
-    void grow_wedge(int w, const std::map<mesh::TetId, int>& ball_wedge, std::vector<mesh::FacetRef>& links,
-                    std::map<mesh::TetId, int>& taken, const CrossTest& cross, std::size_t limit) const;
+    void grow_wedge(int w, const TetOwners& ball_wedge, std::vector<mesh::FacetRef>& links,
+                    TetOwners& taken, const CrossTest& cross, std::size_t limit) const;
     bool fail(std::string why) {
         why_ = std::move(why);
         return false;
