@@ -431,9 +431,9 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     // repeats while a pass makes progress, a few times, for the faces whose
     // mesh changed since their last attempt (FlipRecovery::worth_retrying;
     // the faces flips cannot recover would spend their whole budget again
-    // on every pass; point splitting recovers them anyway). Each harder round only sees
-    // the faces the previous ones left, whose meshes it would otherwise
-    // disturb before their own turn.
+    // on every pass; point splitting recovers them anyway). Each harder
+    // round only sees the faces the previous ones left, whose meshes it
+    // would otherwise disturb before their own turn.
     const std::size_t round_count = std::size(kSearches) - (rounds == FlipRounds::kAll ? 0 : 1);
     for (std::size_t r = 0; r < round_count; ++r) {
         Search search = kSearches[r];

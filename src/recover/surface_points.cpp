@@ -1,7 +1,8 @@
 #include "recover/surface_points.hpp"
 
 #include <algorithm>
-#include <stdexcept>
+
+#include "mesh/errors.hpp"
 
 namespace cbr::recover {
 
@@ -21,7 +22,7 @@ SurfacePoints::SurfacePoints(const ConstraintFaces& faces, std::size_t vertex_co
 }
 
 SurfacePoints::Added& SurfacePoints::record(VertexId p) {
-    if (p < first_new_) throw std::logic_error("SurfacePoints: an input point cannot be an added point");
+    if (p < first_new_) throw InternalError("SurfacePoints: an input point cannot be an added point");
     if (p - first_new_ >= added_.size()) added_.resize(p - first_new_ + 1);
     return added_[p - first_new_];
 }
@@ -42,7 +43,7 @@ void SurfacePoints::remove(VertexId p) {
 
 bool SurfacePoints::on_edge(VertexId v, VertexId* a, VertexId* b, std::size_t* face) const {
     const Added* found = find_added(v);
-    if (!found) throw std::out_of_range("SurfacePoints::on_edge: not an added point");
+    if (!found) throw InternalError("SurfacePoints::on_edge: not an added point");
     const Added& x = *found;
     if (x.face != npos) {
         if (face) *face = x.face;
@@ -147,7 +148,7 @@ void SurfacePoints::set_chain(VertexId a, VertexId b, std::vector<VertexId> chai
 
 void SurfacePoints::remove_from_chain(VertexId p) {
     const Added* found = find_added(p);
-    if (!found) throw std::out_of_range("SurfacePoints::remove_from_chain: not an added point");
+    if (!found) throw InternalError("SurfacePoints::remove_from_chain: not an added point");
     const Added& x = *found;
     auto& c = chains_.at(edge_key(x.a, x.b));
     c.erase(std::find(c.begin(), c.end(), p));
