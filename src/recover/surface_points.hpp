@@ -37,7 +37,7 @@ public:
     bool is_added(mesh::VertexId v) const { return find_added(v) != nullptr; }
     // Vertices from this id on were made by the recovery (added points,
     // then Steiner points).
-    mesh::VertexId first_new_vertex() const { return static_cast<mesh::VertexId>(corner_first_.size() - 1); }
+    mesh::VertexId first_new_vertex() const { return first_new_; }
     // For an added point: true when it lies on an edge (then *a, *b are the
     // edge's ends), false when inside a triangle (then *face is it).
     bool on_edge(mesh::VertexId v, mesh::VertexId* a, mesh::VertexId* b, std::size_t* face) const;
