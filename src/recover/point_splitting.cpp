@@ -120,6 +120,23 @@ std::array<VertexId, 3> PointSplitting::face_vertices(mesh::FacetRef r) const {
     return {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
 }
 
+// Point p lies strictly beyond the hull face of ghost g (on the side of
+// the ghost vertex).
+bool PointSplitting::sees_hull_face(TetId g, const double* p) const {
+    const VertexId* v = m_.vertices(g);
+    return geom::orient3d(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), p) > 0;
+}
+
+// Far face r of a wedge may stay a boundary face of the cone from p: p
+// sees it strictly; for a ghost face, p is not beyond the hull face of the
+// ghost across it (the hull stays convex there).
+bool PointSplitting::keeps_far_face(mesh::FacetRef r, const double* p) const {
+    const TetId t = mesh::facet_tet(r);
+    if (m_.is_ghost(t)) return !sees_hull_face(mesh::facet_tet(m_.neighbor(t, mesh::facet_face(r))), p);
+    const auto [a, b, c] = face_vertices(r);
+    return geom::orient3d(m_.point(a), m_.point(b), m_.point(c), p) > 0;
+}
+
 // A vertex a split may take out of the mesh: a Steiner point of an earlier
 // split (never an input vertex or an added point).
 bool PointSplitting::absorbable(VertexId v) const {
@@ -129,13 +146,23 @@ bool PointSplitting::absorbable(VertexId v) const {
 // Grows wedge w past the far faces `cross` selects: the tetrahedron beyond
 // such a face joins the wedge (its other faces become far faces, or
 // interior ones where they meet the wedge) — unless the face is a
-// constraint or a sub-face, or that tetrahedron is a ghost, in the ball or
-// already taken by a wedge. At most `limit` tetrahedra are taken in.
-// The region stays a set of whole tetrahedra, so whatever point sees all
-// its boundary faces can cone it (tested exactly by the caller).
+// constraint or a sub-face, or that tetrahedron is in the ball or already
+// taken by a wedge, or a ghost while `beyond_hull` is null. At most `limit`
+// tetrahedra are taken in. The region stays a set of whole tetrahedra, so
+// whatever point sees all its boundary faces can cone it (tested exactly
+// by the caller).
+//
+// With `beyond_hull`, a point the wedge is to be coned from, the wedge may
+// also take in the ghosts of the hull faces that point lies beyond (or on:
+// `cross` decides for the hull face as for any face): the point then
+// becomes a hull vertex, as a Delaunay insertion outside the hull would
+// make it. A ghost face (a hull edge and the ghost vertex) is crossed when
+// the point lies strictly beyond the hull face of the ghost on its other
+// side; coned, a ghost face gives a ghost whose hull face joins the edge
+// to the point (replace_tets checks that the hull stays convex).
 void PointSplitting::grow_wedge(int w, const TetOwners& ball_wedge, std::vector<mesh::FacetRef>& links,
                                 TetOwners& taken, const CrossTest& cross,
-                                std::size_t limit) const {
+                                std::size_t limit, const double* beyond_hull) const {
     const auto in_wedge = [&](TetId t) {
         if (const int* b = ball_wedge.find(t)) return *b == w;
         const int* k = taken.find(t);
@@ -150,12 +177,18 @@ void PointSplitting::grow_wedge(int w, const TetOwners& ball_wedge, std::vector<
         if (inside.find(links[i])) continue;
         const TetId t = mesh::facet_tet(links[i]);
         const int f = mesh::facet_face(links[i]);
-        const auto [a, b, c] = face_vertices(links[i]);
-        if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
-        if (!cross(m_.point(a), m_.point(b), m_.point(c))) continue;
         const mesh::FacetRef across = m_.neighbor(t, f);
         const TetId n = mesh::facet_tet(across);
-        if (m_.is_ghost(n) || ball_wedge.contains(n) || taken.contains(n)) continue;
+        if (m_.is_ghost(n) && beyond_hull == nullptr) continue;
+        if (m_.is_ghost(t)) {
+            // A ghost face: n is a ghost too.
+            if (!sees_hull_face(n, beyond_hull)) continue;
+        } else {
+            const auto [a, b, c] = face_vertices(links[i]);
+            if (m_.is_constrained(t, f) || points_.is_subface(a, b, c)) continue;
+            if (!cross(m_.point(a), m_.point(b), m_.point(c))) continue;
+        }
+        if (ball_wedge.contains(n) || taken.contains(n)) continue;
         taken.add(n, w);
         ++grown;
         inside[links[i]] = true;
@@ -207,7 +240,7 @@ bool PointSplitting::keeps_region_vertices(int w, const std::vector<std::array<V
         if (*taken.find(t) != w) continue;
         for (int i = 0; i < 4; ++i) {
             const VertexId v = m_.vertex(t, i);
-            if (boundary.count(v) == 0 && !absorbable(v)) return false;
+            if (v != kGhostVertex && boundary.count(v) == 0 && !absorbable(v)) return false;
         }
     }
     return true;
@@ -234,10 +267,9 @@ bool PointSplitting::place_by_growing(int w, const double* pe, const double* d,
         const double* st = s.data();
         grow_wedge(w, ball_wedge, grown, grown_taken, [st](const double* a, const double* b, const double* c) {
             return geom::orient3d(a, b, c, st) <= 0;
-        }, kMaxTakenTowardsTarget);
-        std::vector<std::array<VertexId, 3>> far;
-        for (const mesh::FacetRef r : grown) far.push_back(face_vertices(r));
-        if (!sees_all(m_, far, st) || !keeps_region_vertices(w, poly, grown, grown_taken)) continue;
+        }, kMaxTakenTowardsTarget, st);
+        const bool sees_far = std::all_of(grown.begin(), grown.end(), [&](mesh::FacetRef r) { return keeps_far_face(r, st); });
+        if (!sees_far || !keeps_region_vertices(w, poly, grown, grown_taken)) continue;
         links = std::move(grown);
         taken = std::move(grown_taken);
         return true;

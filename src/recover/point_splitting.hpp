@@ -31,7 +31,10 @@
 // extremely close to the surface does), the wedge grows instead: it takes
 // in the tetrahedra beyond every far face a target point does not see, so
 // the target cones the grown region (§5.1's cavity correction, driven by
-// the point); earlier Steiner points inside it are absorbed.
+// the point); earlier Steiner points inside it are absorbed. An exterior
+// wedge that borders the convex hull (a nearly planar face of the surface
+// on the hull: a rotated CAD cylinder's cap) may grow past the hull too,
+// its point then a new hull vertex outside the old hull.
 #pragma once
 
 #include <array>
@@ -79,7 +82,10 @@ private:
                         mesh::VertexId e, std::vector<mesh::VertexId>& absorbed) const;
     using CrossTest = std::function<bool(const double*, const double*, const double*)>;
     void grow_wedge(int w, const TetOwners& ball_wedge, std::vector<mesh::FacetRef>& links,
-                    TetOwners& taken, const CrossTest& cross, std::size_t limit) const;
+                    TetOwners& taken, const CrossTest& cross, std::size_t limit,
+                    const double* beyond_hull = nullptr) const;
+    bool sees_hull_face(mesh::TetId g, const double* p) const;
+    bool keeps_far_face(mesh::FacetRef r, const double* p) const;
     bool fail(std::string why) {
         why_ = std::move(why);
         return false;
