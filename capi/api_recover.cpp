@@ -40,6 +40,25 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
     return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
 }
 
+// The corners of a cube around every point of m, centred on their
+// bounding box, its half side twice the box's largest half side: each
+// corner at least that half side beyond the points in every coordinate.
+std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m.point(0)[k];
+    for (cbr::mesh::VertexId v = 1; v < m.vertex_count(); ++v)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], m.point(v)[k]);
+            hi[k] = std::max(hi[k], m.point(v)[k]);
+        }
+    double half = 0;
+    for (int k = 0; k < 3; ++k) half = std::max(half, (hi[k] - lo[k]) / 2);
+    std::vector<double> corners;
+    for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 3; ++k) corners.push_back((lo[k] + hi[k]) / 2 + ((i >> k & 1) ? 2 : -2) * half);
+    return corners;
+}
+
 // CBR_STAT_STEINER_INSIDE: the distinct Steiner points that some tetrahedron
 // of a bounded region (region > 0) uses; 0 before recovery.
 std::size_t steiner_inside(const cbr_mesh& h) {
@@ -83,8 +102,37 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         const auto start = std::chrono::steady_clock::now();
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
-        const auto result =
+        auto result =
             cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats, mesh->recovery_options);
+        // A second attempt inside an enclosing box: every input triangle is
+        // then interior to the mesh, away from its convex hull. Surfaces
+        // with nearly planar faces on the hull (a rotated CAD cylinder's
+        // fanned caps: the flat layer between them and the hull leaves no
+        // room for the points that split them) often recover so. The eight
+        // corners follow the caller's points and count as Steiner points
+        // (outside every bounded region).
+        std::vector<cbr::mesh::VertexId> box_corners;
+        if (!result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry) {
+            mesh->delaunay.rebuild();
+            const std::vector<double> box = enclosing_box(mesh->delaunay.mesh());
+            const cbr::mesh::VertexId first = static_cast<cbr::mesh::VertexId>(mesh->delaunay.mesh().vertex_count());
+            if (mesh->delaunay.insert_points(box.data(), 8).ok) {
+                cbr::recover::RecoveryStats boxed_stats;
+                auto boxed = cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, boxed_stats,
+                                                         mesh->recovery_options);
+                if (boxed.ok) {
+                    result = std::move(boxed);
+                    state.stats = boxed_stats;
+                    state.stats.steiner_generated += 8;
+                    state.stats.steiner_remaining += 8;
+                    for (cbr::mesh::VertexId v = first; v < first + 8; ++v) box_corners.push_back(v);
+                } else {
+                    if (!boxed.invalid.empty()) result.invalid = boxed.invalid;
+                    result.why += " (and inside an enclosing box: " + boxed.why + ")";
+                    mesh->delaunay.drop_last_batch();
+                }
+            }
+        }
         if (!result.ok) {
             mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).
@@ -99,7 +147,8 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         }
         // Steiner points follow the caller's points in both numberings.
         mesh->delaunay.adopt_added_vertices();
-        state.steiner = result.steiner;
+        state.steiner = box_corners;
+        state.steiner.insert(state.steiner.end(), result.steiner.begin(), result.steiner.end());
         state.regions = cbr::recover::classify_regions(mesh->delaunay.mesh(), state.faces);
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;

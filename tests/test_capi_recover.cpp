@@ -12,6 +12,7 @@
 
 #include "capi_test_util.hpp"
 #include "hard_cases.hpp"
+#include "recovery_checks.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -132,6 +133,52 @@ TEST_CASE("a face that cannot be recovered is named, and the mesh is unchanged")
     // Still usable: more points can be inserted.
     const double extra[3] = {1e3, 1e3, 1e3};
     CHECK(cbr_mesh_insert_points(h.m, 1, extra) == CBR_OK);
+}
+
+TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an enclosing box") {
+    // tests/data/recover/prism-64-fan-caps-h20-q2.off, a rotated CAD
+    // cylinder with fanned caps: recovery fails on the Delaunay mesh of its
+    // points (checked when the fixture was made) and succeeds once the
+    // eight corners of a box around them are added. The corners follow the
+    // caller's points and are Steiner points of the exterior; if the first
+    // attempt ever succeeds, they are gone and this test says so.
+    cbr::test::OffSurface p;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-64-fan-caps-h20-q2.off", p));
+    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
+    Handle h;
+    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(), nullptr) ==
+            CBR_OK);
+    const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
+    CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
+    CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) == static_cast<double>(steiner_count));
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
+    REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
+    const std::set<std::int64_t> steiner(ids.begin(), ids.end());
+    std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
+    REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p.xyz[static_cast<std::size_t>(k)];
+    for (std::size_t i = 0; i < p.xyz.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], p.xyz[i]);
+        hi[i % 3] = std::max(hi[i % 3], p.xyz[i]);
+    }
+    // The corners: ids n .. n + 7, beyond the points' bounding box in every
+    // coordinate, used by no tetrahedron of the bounded region.
+    std::set<std::int64_t> corners;
+    for (std::int64_t v = n; v < n + 8; ++v) {
+        CHECK(steiner.count(v) == 1);
+        corners.insert(v);
+        for (int k = 0; k < 3; ++k) {
+            const double x = xyz[3 * static_cast<std::size_t>(v) + static_cast<std::size_t>(k)];
+            CHECK((x < lo[k] || x > hi[k]));
+        }
+    }
+    const auto bounded = tets_of(h.m);
+    CHECK(std::none_of(bounded.begin(), bounded.end(), [&](std::int64_t v) { return corners.count(v) > 0; }));
+    CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) <= static_cast<double>(steiner_count - 8));
+    // The project's exact checks of the recovered mesh.
+    cbr::test::check_recovered(h.m, p.xyz, p.tris);
 }
 
 TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any change") {

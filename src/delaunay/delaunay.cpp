@@ -159,6 +159,11 @@ void Delaunay::adopt_added_vertices() {
     }
 }
 
+void Delaunay::drop_last_batch() {
+    if (!batch_ends_.empty()) batch_ends_.pop_back();
+    rebuild();
+}
+
 void Delaunay::rebuild() {
     discard_vertices_from(batch_ends_.empty() ? 0 : batch_ends_.back());
     mesh_.clear_tets();

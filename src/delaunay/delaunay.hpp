@@ -50,6 +50,9 @@ public:
     // algorithm is deterministic, so replaying them gives bit-identical
     // arrays (same tetrahedra, same order).
     void rebuild();
+    // Forgets the last successful batch (its points leave both numberings)
+    // and rebuilds: the state before that batch, bit for bit.
+    void drop_last_batch();
     // Points that a later step appended to the mesh (Steiner and field
     // points, TetMesh::add_points) join both numberings with external id ==
     // internal id, i.e. after the caller's points in the order they were

@@ -43,6 +43,11 @@ struct RecoveryOptions {
     // flip_recovery.cpp). Not in the C API: tests vary it to reach other
     // mesh states for the steps after the flips.
     int deepest_flip_budget = 0;
+    // cbr_mesh_recover_faces: after a failure, a second attempt with the
+    // eight corners of an enclosing box added to the Delaunay mesh (api_
+    // recover.cpp). Not in the C API: tests switch it off to reach the
+    // first attempt's failures.
+    bool enclosing_box_retry = true;
 };
 
 // Recovers every triangle of `faces` as a face of m, marking them as
