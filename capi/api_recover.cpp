@@ -59,6 +59,40 @@ std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
     return corners;
 }
 
+// The second attempt of cbr_mesh_recover_faces, after `result` failed:
+// the Delaunay mesh of the points again, with the corners of
+// enclosing_box() added, so that every input triangle is interior to the
+// mesh, away from its convex hull. Surfaces with nearly planar faces on
+// the hull (a rotated CAD cylinder's fanned caps: the flat layer between
+// them and the hull leaves no room for the points that split them) often
+// recover so. On success `result` and state.stats are the second
+// attempt's, and `corners` lists the eight corners: they follow the
+// caller's points and count as Steiner points (outside every bounded
+// region). On failure the second attempt's reason is added to
+// result.why (its invalid report replaces the first's), and the mesh is
+// the Delaunay mesh of the caller's points once more.
+void recover_in_enclosing_box(cbr_mesh& mesh, cbr::capi::RecoveryState& state, cbr::recover::RecoveryResult& result,
+                              std::vector<cbr::mesh::VertexId>& corners) {
+    mesh.delaunay.rebuild();
+    const std::vector<double> box = enclosing_box(mesh.delaunay.mesh());
+    const auto first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
+    if (!mesh.delaunay.insert_points(box.data(), 8).ok) return;  // restored by insert_points
+    cbr::recover::RecoveryStats stats;
+    cbr::recover::RecoveryResult boxed =
+        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), state.faces, stats, mesh.recovery_options);
+    if (!boxed.ok) {
+        if (!boxed.invalid.empty()) result.invalid = boxed.invalid;
+        result.why += " (and inside an enclosing box: " + boxed.why + ")";
+        mesh.delaunay.drop_last_batch();
+        return;
+    }
+    result = std::move(boxed);
+    state.stats = stats;
+    state.stats.steiner_generated += 8;
+    state.stats.steiner_remaining += 8;
+    for (cbr::mesh::VertexId v = first; v < first + 8; ++v) corners.push_back(v);
+}
+
 // CBR_STAT_STEINER_INSIDE: the distinct Steiner points that some tetrahedron
 // of a bounded region (region > 0) uses; 0 before recovery.
 std::size_t steiner_inside(const cbr_mesh& h) {
@@ -102,39 +136,15 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         const auto start = std::chrono::steady_clock::now();
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
-        auto result =
+        cbr::recover::RecoveryResult result =
             cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats, mesh->recovery_options);
-        // A second attempt inside an enclosing box: every input triangle is
-        // then interior to the mesh, away from its convex hull. Surfaces
-        // with nearly planar faces on the hull (a rotated CAD cylinder's
-        // fanned caps: the flat layer between them and the hull leaves no
-        // room for the points that split them) often recover so. The eight
-        // corners follow the caller's points and count as Steiner points
-        // (outside every bounded region).
+        // After a failure (not a broken invariant): a second attempt inside
+        // an enclosing box, which restores the Delaunay mesh itself if it fails.
+        const bool retried = !result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry;
         std::vector<cbr::mesh::VertexId> box_corners;
-        if (!result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry) {
-            mesh->delaunay.rebuild();
-            const std::vector<double> box = enclosing_box(mesh->delaunay.mesh());
-            const cbr::mesh::VertexId first = static_cast<cbr::mesh::VertexId>(mesh->delaunay.mesh().vertex_count());
-            if (mesh->delaunay.insert_points(box.data(), 8).ok) {
-                cbr::recover::RecoveryStats boxed_stats;
-                auto boxed = cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, boxed_stats,
-                                                         mesh->recovery_options);
-                if (boxed.ok) {
-                    result = std::move(boxed);
-                    state.stats = boxed_stats;
-                    state.stats.steiner_generated += 8;
-                    state.stats.steiner_remaining += 8;
-                    for (cbr::mesh::VertexId v = first; v < first + 8; ++v) box_corners.push_back(v);
-                } else {
-                    if (!boxed.invalid.empty()) result.invalid = boxed.invalid;
-                    result.why += " (and inside an enclosing box: " + boxed.why + ")";
-                    mesh->delaunay.drop_last_batch();
-                }
-            }
-        }
+        if (retried) recover_in_enclosing_box(*mesh, state, result, box_corners);
         if (!result.ok) {
-            mesh->delaunay.rebuild();  // the mesh stays as it was
+            if (!retried) mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).
             mesh->recovery.stats = state.stats;
             mesh->recovery.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
