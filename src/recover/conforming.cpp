@@ -10,7 +10,9 @@
 #include "geom/predicates.hpp"
 #include "geom/segment_point.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/errors.hpp"
 #include "mesh/flips.hpp"
+#include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 #include "recover/segment_walk.hpp"
 
@@ -101,6 +103,33 @@ void segment_line_point(const double* p, const double* q, const double* x, const
     double s = denom > 0 ? (b * f - c * e) / denom : 0.5;
     if (!(s > 0.0) || s >= 1.0) s = 0.5;
     geom::segment_point_off_ends(p, q, s, out);
+}
+
+// Where segment pq crosses segment xy (exactly coplanar, crossing in their
+// interiors), as a rounded point of xy: x + t (y - x) with
+// t = ((p - x) x (q - p)) . ((y - x) x (q - p)) / |(y - x) x (q - p)|^2
+// (cross products: no squared condition number, unlike the normal
+// equations of segment_line_point).
+void segment_crossing_on_edge(const double* p, const double* q, const double* x, const double* y, double out[3]) {
+    double d[3], e[3], r[3];
+    for (int k = 0; k < 3; ++k) {
+        d[k] = q[k] - p[k];
+        e[k] = y[k] - x[k];
+        r[k] = p[k] - x[k];
+    }
+    const auto cross = [](const double* u, const double* v, double* w) {
+        w[0] = u[1] * v[2] - u[2] * v[1];
+        w[1] = u[2] * v[0] - u[0] * v[2];
+        w[2] = u[0] * v[1] - u[1] * v[0];
+    };
+    double rd[3], ed[3];
+    cross(r, d, rd);
+    cross(e, d, ed);
+    const double num = rd[0] * ed[0] + rd[1] * ed[1] + rd[2] * ed[2];
+    const double den = ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2];
+    double t = den > 0 ? num / den : 0.5;
+    if (!(t > 0.0) || t >= 1.0) t = 0.5;
+    geom::segment_point_off_ends(x, y, t, out);
 }
 
 }  // namespace
@@ -209,45 +238,97 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
             return true;
         }
         const Crossing c = first_crossing(m_, q, incident_[q], b, scratch_);
-        double xyz[3];
+        std::vector<Position> candidates;
         std::vector<TetId> cavity;
-        switch (c.kind) {
-            case Crossing::kFace: {
-                const VertexId* v = m_.vertices(c.tet);
-                const int* k = kFaceVertices[c.face];
-                const TetId beyond = mesh::facet_tet(m_.neighbor(c.tet, c.face));
-                // A crossing that rounds onto q (a chain end that rounding put
-                // next to a face of its own ball: feeder body, with another
-                // flip budget before) would be q again; a point an ulp from q
-                // would be no better, its ball too thin to split later. The
-                // middle of the segment's part in the tetrahedron beyond is a
-                // point of the segment that clears both.
-                if (!segment_plane_point(m_.point(q), m_.point(b), m_.point(v[k[0]]), m_.point(v[k[1]]),
-                                         m_.point(v[k[2]]), xyz) &&
-                    !m_.is_ghost(beyond))
-                    middle_in_tet(m_, beyond, m_.point(q), m_.point(b), xyz);
-                cavity = {c.tet, beyond};
-                break;
-            }
-            case Crossing::kEdge: {
-                segment_line_point(m_.point(q), m_.point(b), m_.point(c.x), m_.point(c.y), xyz);
-                mesh::Shell s;
-                if (!mesh::shell(m_, c.x, c.y, c.tet, s)) return fail("edge walk: no shell");
-                cavity = s.tets;
-                break;
-            }
-            case Crossing::kVertex:
-                return fail("an input edge runs exactly through another vertex");
-            default: return fail("edge walk found no tetrahedron towards the other end");
-        }
-        const VertexId p = insert(xyz, cavity, false);
+        if (!crossing_candidates(c, q, b, candidates, cavity)) return false;
+        const VertexId p = insert_joined(candidates, cavity, q);
         if (p == kGhostVertex) return false;
         points_.add_edge_point(p, a, b);
-        if (!edge_exists(q, p)) return fail("an added point is not joined to the chain it extends");
         chain.push_back(p);
         q = p;
     }
     return fail("too many points on one edge");
+}
+
+// Where a point may go to remove crossing c of segment qb, best first, and
+// the crossing's tetrahedra (the initial cavity). The first is the
+// crossing itself, rounded. Where the tetrahedra are thin (nearly coplanar
+// points far from the origin: a CAD cylinder's fanned cap, turned in
+// space), rounding can put it where the insertion cannot join it to q;
+// the others are points of the segment (the middle of its part in a
+// tetrahedron of the crossing, checked exactly to lie in it) or of the
+// crossed edge, which rounding may treat better. On the turned cylinder
+// the middle of the segment in the tetrahedron beyond the crossed face is
+// the one that works.
+bool ConformingRecovery::crossing_candidates(const Crossing& c, VertexId q, VertexId b,
+                                             std::vector<Position>& candidates, std::vector<TetId>& cavity) {
+    const double* pq = m_.point(q);
+    const double* pb = m_.point(b);
+    Position xyz{};
+    switch (c.kind) {
+        case Crossing::kFace: {
+            const VertexId* v = m_.vertices(c.tet);
+            const int* k = kFaceVertices[c.face];
+            const TetId beyond = mesh::facet_tet(m_.neighbor(c.tet, c.face));
+            cavity = {c.tet, beyond};
+            // A crossing that rounds onto q (a chain end that rounding put
+            // next to a face of its own ball: feeder body, with another
+            // flip budget before) would be q again; a point an ulp from q
+            // would be no better, its ball too thin to split later. The
+            // middle of the segment's part in the tetrahedron beyond is a
+            // point of the segment that clears both.
+            if (!segment_plane_point(pq, pb, m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]), xyz.data()) &&
+                !m_.is_ghost(beyond))
+                middle_in_tet(m_, beyond, pq, pb, xyz.data());
+            candidates.push_back(xyz);
+            for (TetId t : {beyond, c.tet})
+                if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) candidates.push_back(xyz);
+            return true;
+        }
+        case Crossing::kEdge: {
+            mesh::Shell s;
+            if (!mesh::shell(m_, c.x, c.y, c.tet, s)) return fail("edge walk: no shell");
+            cavity = s.tets;
+            segment_line_point(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
+            candidates.push_back(xyz);
+            segment_crossing_on_edge(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
+            candidates.push_back(xyz);
+            for (TetId t : cavity)
+                if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) candidates.push_back(xyz);
+            return true;
+        }
+        case Crossing::kVertex: return fail("an input edge runs exactly through another vertex");
+        default: return fail("edge walk found no tetrahedron towards the other end");
+    }
+}
+
+// Inserts the first candidate that the insertion takes and that ends up
+// joined to the chain end q (an edge qp); a candidate that is inserted but
+// not joined is taken out again (its cavity put back as it was). Returns
+// the point, or kGhostVertex with why() the first candidate's failure.
+VertexId ConformingRecovery::insert_joined(const std::vector<Position>& candidates, const std::vector<TetId>& cavity,
+                                           VertexId q) {
+    std::string first_why;
+    for (const Position& xyz : candidates) {
+        const VertexId p = insert(xyz.data(), cavity, false);
+        if (p != kGhostVertex && edge_exists(q, p)) return p;
+        if (p != kGhostVertex) {
+            why_ = "an added point is not joined to the chain it extends";
+            undo_last_insertion(p);
+        }
+        if (first_why.empty()) first_why = why_;
+    }
+    why_ = first_why;
+    return kGhostVertex;
+}
+
+void ConformingRecovery::undo_last_insertion(VertexId p) {
+    const ProtectedInsertResult& r = inserter_.last();
+    std::vector<TetId> restored;
+    if (mesh::replace_tets(m_, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
+        throw InternalError("conforming recovery: the cavity of a rejected point could not be put back");
+    note_created(restored);
+    m_.truncate_vertices(p);
 }
 
 // §5.2 for the interior of a face whose edges are chains: put a point where

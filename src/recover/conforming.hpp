@@ -19,12 +19,14 @@
 // tetrahedra are removed by edge removal before the disk check.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
 #include "recover/protected_insertion.hpp"
+#include "recover/segment_walk.hpp"
 #include "recover/surface_points.hpp"
 
 namespace cbr::recover {
@@ -41,7 +43,13 @@ public:
     std::vector<mesh::TetId>& incident() { return incident_; }
 
 private:
+    using Position = std::array<double, 3>;
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
+    bool crossing_candidates(const Crossing& c, mesh::VertexId q, mesh::VertexId b, std::vector<Position>& candidates,
+                             std::vector<mesh::TetId>& cavity);
+    mesh::VertexId insert_joined(const std::vector<Position>& candidates, const std::vector<mesh::TetId>& cavity,
+                                 mesh::VertexId q);
+    void undo_last_insertion(mesh::VertexId p);
     bool recover_interior(std::size_t face);
     // Every flat tetrahedron of the face; `removed`: how many there were.
     bool remove_flat_tets(std::size_t face, std::size_t& removed);
