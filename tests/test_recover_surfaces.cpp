@@ -74,7 +74,7 @@ TEST_CASE("recovery on every shared surface") {
 // caps are then only nearly planar, and the first intersection point that
 // conforming recovery rounds on one of its missing edges cannot be joined
 // to the chain it extends; another point of the crossing can
-// (ConformingRecovery::crossing_candidates).
+// (ConformingRecovery::other_crossing_points).
 TEST_CASE("recovery of the CAD cylinder turned in space") {
     std::string path;
     for (const std::string& p : cbr::test::shared_surfaces())

@@ -238,11 +238,16 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
             return true;
         }
         const Crossing c = first_crossing(m_, q, incident_[q], b, scratch_);
-        std::vector<Position> candidates;
         std::vector<TetId> cavity;
-        if (!crossing_candidates(c, q, b, candidates, cavity)) return false;
-        const VertexId p = insert_joined(candidates, cavity, q);
-        if (p == kGhostVertex) return false;
+        Position xyz{};
+        if (!crossing_point(c, q, b, xyz, cavity)) return false;
+        VertexId p = insert_joined(xyz, cavity, q);
+        if (p == kGhostVertex) {
+            const std::string first_why = why_;
+            for (const Position& other : other_crossing_points(c, q, b, cavity))
+                if ((p = insert_joined(other, cavity, q)) != kGhostVertex) break;
+            if (p == kGhostVertex) return fail(first_why);
+        }
         points_.add_edge_point(p, a, b);
         chain.push_back(p);
         q = p;
@@ -250,21 +255,12 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
     return fail("too many points on one edge");
 }
 
-// Where a point may go to remove crossing c of segment qb, best first, and
-// the crossing's tetrahedra (the initial cavity). The first is the
-// crossing itself, rounded. Where the tetrahedra are thin (nearly coplanar
-// points far from the origin: a CAD cylinder's fanned cap, turned in
-// space), rounding can put it where the insertion cannot join it to q;
-// the others are points of the segment (the middle of its part in a
-// tetrahedron of the crossing, checked exactly to lie in it) or of the
-// crossed edge, which rounding may treat better. On the turned cylinder
-// the middle of the segment in the tetrahedron beyond the crossed face is
-// the one that works.
-bool ConformingRecovery::crossing_candidates(const Crossing& c, VertexId q, VertexId b,
-                                             std::vector<Position>& candidates, std::vector<TetId>& cavity) {
+// The point that removes crossing c of segment qb (the crossing itself,
+// rounded) and the crossing's tetrahedra, the initial cavity.
+bool ConformingRecovery::crossing_point(const Crossing& c, VertexId q, VertexId b, Position& xyz,
+                                        std::vector<TetId>& cavity) {
     const double* pq = m_.point(q);
     const double* pb = m_.point(b);
-    Position xyz{};
     switch (c.kind) {
         case Crossing::kFace: {
             const VertexId* v = m_.vertices(c.tet);
@@ -280,9 +276,6 @@ bool ConformingRecovery::crossing_candidates(const Crossing& c, VertexId q, Vert
             if (!segment_plane_point(pq, pb, m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]), xyz.data()) &&
                 !m_.is_ghost(beyond))
                 middle_in_tet(m_, beyond, pq, pb, xyz.data());
-            candidates.push_back(xyz);
-            for (TetId t : {beyond, c.tet})
-                if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) candidates.push_back(xyz);
             return true;
         }
         case Crossing::kEdge: {
@@ -290,11 +283,6 @@ bool ConformingRecovery::crossing_candidates(const Crossing& c, VertexId q, Vert
             if (!mesh::shell(m_, c.x, c.y, c.tet, s)) return fail("edge walk: no shell");
             cavity = s.tets;
             segment_line_point(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
-            candidates.push_back(xyz);
-            segment_crossing_on_edge(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
-            candidates.push_back(xyz);
-            for (TetId t : cavity)
-                if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) candidates.push_back(xyz);
             return true;
         }
         case Crossing::kVertex: return fail("an input edge runs exactly through another vertex");
@@ -302,23 +290,40 @@ bool ConformingRecovery::crossing_candidates(const Crossing& c, VertexId q, Vert
     }
 }
 
-// Inserts the first candidate that the insertion takes and that ends up
-// joined to the chain end q (an edge qp); a candidate that is inserted but
-// not joined is taken out again (its cavity put back as it was). Returns
-// the point, or kGhostVertex with why() the first candidate's failure.
-VertexId ConformingRecovery::insert_joined(const std::vector<Position>& candidates, const std::vector<TetId>& cavity,
-                                           VertexId q) {
-    std::string first_why;
-    for (const Position& xyz : candidates) {
-        const VertexId p = insert(xyz.data(), cavity, false);
-        if (p != kGhostVertex && edge_exists(q, p)) return p;
-        if (p != kGhostVertex) {
-            why_ = "an added point is not joined to the chain it extends";
-            undo_last_insertion(p);
-        }
-        if (first_why.empty()) first_why = why_;
+// Where else a point may remove crossing c, when crossing_point's cannot be
+// inserted joined to q. Where the tetrahedra are thin (nearly coplanar
+// points far from the origin: a CAD cylinder's fanned cap, turned in
+// space), rounding can put the crossing where the insertion refuses it or
+// cuts q off. Other points of the segment (the middle of its part in a
+// tetrahedron of the crossing, checked exactly to lie in it) or of the
+// crossed edge may fare better: on the turned cylinder, the middle of the
+// segment in the tetrahedron beyond the crossed face does.
+std::vector<ConformingRecovery::Position> ConformingRecovery::other_crossing_points(const Crossing& c, VertexId q,
+                                                                                    VertexId b,
+                                                                                    const std::vector<TetId>& cavity) {
+    const double* pq = m_.point(q);
+    const double* pb = m_.point(b);
+    std::vector<Position> points;
+    Position xyz{};
+    if (c.kind == Crossing::kEdge) {
+        segment_crossing_on_edge(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
+        points.push_back(xyz);
     }
-    why_ = first_why;
+    std::vector<TetId> tets = cavity;
+    if (c.kind == Crossing::kFace) std::reverse(tets.begin(), tets.end());  // the tetrahedron beyond the face first
+    for (TetId t : tets)
+        if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) points.push_back(xyz);
+    return points;
+}
+
+// Inserts a point at xyz into `cavity` and keeps it when it ends up joined
+// to the chain end q (an edge qp); otherwise takes it out again (its cavity
+// put back as it was) and returns kGhostVertex, why() saying why.
+VertexId ConformingRecovery::insert_joined(const Position& xyz, const std::vector<TetId>& cavity, VertexId q) {
+    const VertexId p = insert(xyz.data(), cavity, false);
+    if (p == kGhostVertex || edge_exists(q, p)) return p;
+    undo_last_insertion(p);
+    why_ = "an added point is not joined to the chain it extends";
     return kGhostVertex;
 }
 

@@ -45,10 +45,11 @@ public:
 private:
     using Position = std::array<double, 3>;
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
-    bool crossing_candidates(const Crossing& c, mesh::VertexId q, mesh::VertexId b, std::vector<Position>& candidates,
-                             std::vector<mesh::TetId>& cavity);
-    mesh::VertexId insert_joined(const std::vector<Position>& candidates, const std::vector<mesh::TetId>& cavity,
-                                 mesh::VertexId q);
+    bool crossing_point(const Crossing& c, mesh::VertexId q, mesh::VertexId b, Position& xyz,
+                        std::vector<mesh::TetId>& cavity);
+    std::vector<Position> other_crossing_points(const Crossing& c, mesh::VertexId q, mesh::VertexId b,
+                                                const std::vector<mesh::TetId>& cavity);
+    mesh::VertexId insert_joined(const Position& xyz, const std::vector<mesh::TetId>& cavity, mesh::VertexId q);
     void undo_last_insertion(mesh::VertexId p);
     bool recover_interior(std::size_t face);
     // Every flat tetrahedron of the face; `removed`: how many there were.
