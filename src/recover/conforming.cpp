@@ -31,6 +31,14 @@ namespace {
 // forever.
 constexpr std::size_t kMaxInsertionsPerConstraint = 100000;
 
+double dot(const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+
+void cross(const double* u, const double* v, double* w) {
+    w[0] = u[1] * v[2] - u[2] * v[1];
+    w[1] = u[2] * v[0] - u[0] * v[2];
+    w[2] = u[0] * v[1] - u[1] * v[0];
+}
+
 double signed_volume(const double* a, const double* b, const double* c, const double* d) {
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -97,7 +105,6 @@ void segment_line_point(const double* p, const double* q, const double* x, const
         d2[k] = y[k] - x[k];
         r[k] = p[k] - x[k];
     }
-    const auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
     const double a = dot(d1, d1), e = dot(d2, d2), b = dot(d1, d2), c = dot(d1, r), f = dot(d2, r);
     const double denom = a * e - b * b;
     double s = denom > 0 ? (b * f - c * e) / denom : 0.5;
@@ -117,16 +124,11 @@ void segment_crossing_on_edge(const double* p, const double* q, const double* x,
         e[k] = y[k] - x[k];
         r[k] = p[k] - x[k];
     }
-    const auto cross = [](const double* u, const double* v, double* w) {
-        w[0] = u[1] * v[2] - u[2] * v[1];
-        w[1] = u[2] * v[0] - u[0] * v[2];
-        w[2] = u[0] * v[1] - u[1] * v[0];
-    };
     double rd[3], ed[3];
     cross(r, d, rd);
     cross(e, d, ed);
-    const double num = rd[0] * ed[0] + rd[1] * ed[1] + rd[2] * ed[2];
-    const double den = ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2];
+    const double num = dot(rd, ed);
+    const double den = dot(ed, ed);
     double t = den > 0 ? num / den : 0.5;
     if (!(t > 0.0) || t >= 1.0) t = 0.5;
     geom::segment_point_off_ends(x, y, t, out);
@@ -466,7 +468,8 @@ bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
     const double* B = m_.point(tri[1]);
     const double* C = m_.point(tri[2]);
     const double u1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, u2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-    const double n[3] = {u1[1] * u2[2] - u1[2] * u2[1], u1[2] * u2[0] - u1[0] * u2[2], u1[0] * u2[1] - u1[1] * u2[0]};
+    double n[3];
+    cross(u1, u2, n);
     double apex[3];
     for (int k = 0; k < 3; ++k) apex[k] = (A[k] + B[k] + C[k]) / 3 + n[k];
     const std::array<VertexId, 4> v{m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3)};
