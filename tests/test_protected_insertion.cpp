@@ -203,9 +203,10 @@ TEST_CASE("random insertions keep constraint faces and blocked faces") {
 }
 
 TEST_CASE("an insertion is undone by putting its cavity back in the star's slots") {
-    // What unblocking points do with a point they reject: the live slots
-    // come back as they were, vertices, neighbours and constraint marks;
-    // the star's other slots are free.
+    // ProtectedInserter::undo_last, what unblocking points and conforming
+    // recovery do with a point they reject: the live slots come back as
+    // they were, vertices, neighbours and constraint marks; the star's
+    // other slots are free; the point is gone.
     std::mt19937_64 rng(8);
     const auto base = cbr::test::random_points(150, 300);
     cbr::delaunay::Delaunay d;
@@ -215,6 +216,7 @@ TEST_CASE("an insertion is undone by putting its cavity back in the star's slots
     for (const auto& [t, f] : random_interior_faces(m, 40, rng)) mark_constraint(m, t, f, constraints);
     const auto extra = cbr::test::random_points(40, 301, 0.2, 0.8);
     std::size_t undone = 0;
+    cbr::recover::ProtectedInserter inserter;
     for (std::size_t i = 0; i < 40; ++i) {
         struct Slot {
             std::array<VertexId, 4> v;
@@ -241,15 +243,15 @@ TEST_CASE("an insertion is undone by putting its cavity back in the star's slots
         const VertexId p = add_point(m, &extra[3 * i]);
         const TetId start = locate(m, m.point(p));
         REQUIRE(start != kNoTet);
-        const ProtectedInsertResult res = insert_protected(m, p, start);
+        const ProtectedInsertResult res = inserter.insert(m, p, start);  // a copy of the inserter's result
         if (!res.ok) {  // on a constraint face: nothing to undo
             m.truncate_vertices(vertices);
             continue;
         }
         REQUIRE(res.cavity.size() <= res.created.size());
         std::vector<TetId> restored;
-        REQUIRE(replace_tets(m, res.created, res.cavity, &restored) == ReplaceResult::kDone);
-        m.truncate_vertices(vertices);
+        inserter.undo_last(m, p, restored);
+        CHECK(m.vertex_count() == vertices);
         CHECK(std::equal(restored.begin(), restored.end(), res.created.begin()));
         CHECK(slots() == before);
         const CheckReport rep = check_mesh(m);

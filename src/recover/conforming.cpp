@@ -10,9 +10,7 @@
 #include "geom/predicates.hpp"
 #include "geom/segment_point.hpp"
 #include "mesh/ball_shell.hpp"
-#include "mesh/errors.hpp"
 #include "mesh/flips.hpp"
-#include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 #include "recover/segment_walk.hpp"
 
@@ -330,12 +328,9 @@ VertexId ConformingRecovery::insert_joined(const Position& xyz, const std::vecto
 }
 
 void ConformingRecovery::undo_last_insertion(VertexId p) {
-    const ProtectedInsertResult& r = inserter_.last();
     std::vector<TetId> restored;
-    if (mesh::replace_tets(m_, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
-        throw InternalError("conforming recovery: the cavity of a rejected point could not be put back");
+    inserter_.undo_last(m_, p, restored);
     note_created(restored);
-    m_.truncate_vertices(p);
 }
 
 // §5.2 for the interior of a face whose edges are chains: put a point where

@@ -29,6 +29,7 @@
 
 #include "geom/flat_cone.hpp"
 #include "geom/predicates.hpp"
+#include "mesh/errors.hpp"
 #include "mesh/slot_marks.hpp"
 #include "mesh/surgery.hpp"
 
@@ -460,6 +461,14 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
 }
 
 const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->result; }
+
+void ProtectedInserter::undo_last(TetMesh& m, VertexId p, std::vector<TetId>& restored) {
+    const ProtectedInsertResult& r = scratch_->result;
+    if (!r.ok || std::size_t{p} + 1 != m.vertex_count() ||
+        mesh::replace_tets(m, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
+        throw InternalError("protected insertion: the cavity of an undone point could not be put back");
+    m.truncate_vertices(p);
+}
 
 const ProtectedInsertResult& ProtectedInserter::insert(TetMesh& m, VertexId p, TetId start,
                                                        const BlockedFace& blocked) {

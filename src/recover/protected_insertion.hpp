@@ -78,6 +78,11 @@ public:
                                         const BlockedFace& blocked = {});
     // The result of the last call (valid until the next one).
     const ProtectedInsertResult& last() const;
+    // Undoes the last insertion, which succeeded, of point p (the mesh's
+    // last vertex): its star goes back to the cavity it replaced (the
+    // cavity's slots as they were) and p goes. `restored`: the tetrahedra
+    // put back. Throws InternalError when the star is no longer in the mesh.
+    void undo_last(mesh::TetMesh& m, mesh::VertexId p, std::vector<mesh::TetId>& restored);
     const ProtectedInsertResult& insert_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                                   const std::vector<mesh::TetId>& cavity,
                                                   const BlockedFace& blocked = {}, bool keep_seed = false);

@@ -10,8 +10,6 @@
 #include "geom/predicates.hpp"
 #include "geom/triangle_distance.hpp"
 #include "mesh/ball_shell.hpp"
-#include "mesh/errors.hpp"
-#include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 
 namespace cbr::recover {
@@ -222,14 +220,11 @@ private:
     // The star of the last point inserted goes back to the cavity it
     // replaced (the cavity's slots as they were), and the point goes.
     void undo_last_insertion(std::vector<VertexId>& steiner) {
-        const ProtectedInsertResult& r = inserter_.last();
         std::vector<TetId> restored;
-        if (mesh::replace_tets(m_, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
-            throw InternalError("unblocking points: the cavity of a rejected point could not be put back");
+        inserter_.undo_last(m_, steiner.back(), restored);
         for (TetId t : restored)
             for (int i = 0; i < 4; ++i)
                 if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
-        m_.truncate_vertices(steiner.back());
         steiner.pop_back();
     }
 
