@@ -9,6 +9,7 @@
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 #include "geom/segment_point.hpp"
+#include "geom/vec3.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/flips.hpp"
 #include "recover/protected_insertion.hpp"
@@ -29,13 +30,8 @@ namespace {
 // forever.
 constexpr std::size_t kMaxInsertionsPerConstraint = 100000;
 
-double dot(const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
-
-void cross(const double* u, const double* v, double* w) {
-    w[0] = u[1] * v[2] - u[2] * v[1];
-    w[1] = u[2] * v[0] - u[0] * v[2];
-    w[2] = u[0] * v[1] - u[1] * v[0];
-}
+using geom::cross;
+using geom::dot;
 
 double signed_volume(const double* a, const double* b, const double* c, const double* d) {
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};

@@ -9,6 +9,7 @@
 #include "geom/point_in_triangle.hpp"
 #include "geom/predicates.hpp"
 #include "geom/triangle_distance.hpp"
+#include "geom/vec3.hpp"
 #include "mesh/ball_shell.hpp"
 #include "recover/protected_insertion.hpp"
 
@@ -40,7 +41,8 @@ constexpr int kMaxWalk = 10000;
 // whole recovery took 0.9).
 constexpr std::size_t kMaxStar = 256;
 
-double dot(const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+using geom::cross;
+using geom::dot;
 
 void centroid(const mesh::TetMesh& m, TetId t, double out[3]) {
     out[0] = out[1] = out[2] = 0;
@@ -68,9 +70,7 @@ void normal_and_scale(const mesh::TetMesh& m, const Triangle& t, double n[3], do
         v[k] = c[k] - a[k];
         w[k] = c[k] - b[k];
     }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
+    cross(u, v, n);
     const double l = std::sqrt(dot(n, n));
     for (int k = 0; k < 3; ++k) n[k] /= l;
     scale = std::sqrt(std::min({dot(u, u), dot(v, v), dot(w, w)}));
