@@ -1155,6 +1155,39 @@ TEST_CASE("recover_faces: the feeder body from another flip state (deepest round
                                                    << stats.steiner_generated << " -> " << stats.steiner_remaining);
 }
 
+TEST_CASE("recover_faces: a turned CAD cylinder recovers in another order of the faces") {
+    // tests/data/recover/cylinder-turned-r3.off: its fanned caps are nearly
+    // planar after the turn, and conforming recovery fails in the order the
+    // flips leave the faces in (the first order alone must fail: if it ever
+    // succeeds, the retry is no longer what this test shows, and it says
+    // so). recovery.cpp then restores the flips' mesh and tries other orders.
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/cylinder-turned-r3.off", s));
+    {
+        Case c;
+        build(c, s.xyz, s.tris);
+        cbr::recover::RecoveryOptions one_order;
+        one_order.face_orders = 1;
+        cbr::recover::RecoveryStats stats;
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, one_order);
+        CHECK_FALSE(r.ok);
+        CHECK(stats.conforming_points > 0);
+        CHECK(r.why.find("conforming recovery of triangle") != std::string::npos);
+        CHECK(r.why.find("other orders") == std::string::npos);
+    }
+    Case c;
+    build(c, s.xyz, s.tris);
+    TetMesh& m = c.m();
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
+    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+    require_valid(m, "after recover_faces");
+    CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+    CHECK(stats.conforming_points > 0);
+    CHECK(m.vertex_count() == c.input_count + r.steiner.size());
+    for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+}
+
 TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)") {
     // Same inputs as the ball transformation test above. Before the
     // crossing's tetrahedra were kept whole by the cavity correction,

@@ -1,5 +1,9 @@
 #include "recover/recovery.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
 #include "mesh/mesh_check.hpp"
 #include "mesh/vertex_compaction.hpp"
 #include "recover/conforming.hpp"
@@ -37,6 +41,49 @@ bool recover_by_splitting(mesh::TetMesh& m, const ConstraintFaces& faces, const 
     stats.steiner_generated += made;
     if (!split) result.why = "splitting an added point: " + why;
     return split;
+}
+
+// Attempt k's order of the faces the flips left: as they are, reversed,
+// then shuffled (Fisher-Yates on a fixed linear congruential sequence: the
+// same orders on every platform, which std::shuffle does not promise).
+std::vector<std::size_t> face_order(std::vector<std::size_t> faces, int attempt) {
+    if (attempt == 1) std::reverse(faces.begin(), faces.end());
+    if (attempt < 2) return faces;
+    std::uint32_t x = static_cast<std::uint32_t>(attempt);
+    for (std::size_t i = faces.size(); i > 1; --i) {
+        x = x * 1103515245u + 12345u;
+        std::swap(faces[i - 1], faces[(x >> 8) % i]);
+    }
+    return faces;
+}
+
+// §5.2 leaves the order of the faces open, and where the surface is nearly
+// flat over many faces it matters: the points added on one face's edges
+// are rounded, and the next face's crossings meet them in flat
+// tetrahedra that one order can clear and another cannot (turned copies of
+// a CAD cylinder and of the upsampled box, the feeder body shifted by 1e6
+// and 1e8: each fails in the first order, recovers in a later one). So
+// after a failure the mesh the flips left is restored and the faces go
+// again in the next order, up to options.face_orders orders; the first
+// order's reason is the one reported.
+bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing,
+                            int orders, RecoveryStats& stats, RecoveryResult& result) {
+    const mesh::TetMesh before = m;
+    const std::vector<mesh::VertexId> steiner_before = result.steiner;
+    const RecoveryStats stats_before = stats;
+    std::string first_why;
+    for (int attempt = 0; attempt < std::max(orders, 1); ++attempt) {
+        if (attempt > 0) {
+            m = before;
+            result.steiner = steiner_before;
+            stats = stats_before;
+        }
+        if (recover_by_splitting(m, faces, face_order(missing, attempt), stats, result)) return true;
+        if (attempt == 0) first_why = result.why;
+    }
+    result.why = first_why;
+    if (orders > 1) result.why += " (and in " + std::to_string(orders - 1) + " other orders of the faces)";
+    return false;
 }
 
 }  // namespace
@@ -82,7 +129,7 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     missing = after_flips;
 
     if (!missing.empty()) {
-        if (!recover_by_splitting(m, faces, missing, stats, result)) {
+        if (!recover_in_face_orders(m, faces, missing, options.face_orders, stats, result)) {
             result.unrecovered = std::move(missing);
             return result;
         }

@@ -48,6 +48,10 @@ struct RecoveryOptions {
     // recover.cpp). Not in the C API: tests switch it off to reach the
     // first attempt's failures.
     bool enclosing_box_retry = true;
+    // Orders of the faces that conforming recovery and splitting try, each
+    // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
+    // Not in the C API: tests set 1 to reach the first order's failures.
+    int face_orders = 6;
 };
 
 // Recovers every triangle of `faces` as a face of m, marking them as
