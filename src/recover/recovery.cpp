@@ -64,14 +64,15 @@ std::vector<std::size_t> face_order(std::vector<std::size_t> faces, int attempt)
 // a CAD cylinder and of the upsampled box, the feeder body shifted by 1e6
 // and 1e8: each fails in the first order, recovers in a later one). So
 // after a failure the mesh the flips left is restored and the faces go
-// again in the next order, up to options.face_orders orders; the first
-// order's reason is the one reported.
+// again in the next order, up to options.face_orders orders. A failure is
+// reported as the first order's (its reason and its statistics).
 bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing,
                             int orders, RecoveryStats& stats, RecoveryResult& result) {
     const mesh::TetMesh before = m;
     const std::vector<mesh::VertexId> steiner_before = result.steiner;
     const RecoveryStats stats_before = stats;
     std::string first_why;
+    RecoveryStats first_stats;
     for (int attempt = 0; attempt < std::max(orders, 1); ++attempt) {
         if (attempt > 0) {
             m = before;
@@ -79,9 +80,13 @@ bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, cons
             stats = stats_before;
         }
         if (recover_by_splitting(m, faces, face_order(missing, attempt), stats, result)) return true;
-        if (attempt == 0) first_why = result.why;
+        if (attempt == 0) {
+            first_why = result.why;
+            first_stats = stats;
+        }
     }
     result.why = first_why;
+    stats = first_stats;
     if (orders > 1) result.why += " (and in " + std::to_string(orders - 1) + " other orders of the faces)";
     return false;
 }

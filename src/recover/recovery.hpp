@@ -2,7 +2,8 @@
 // order: find the missing faces; flips (§5.1); where flips are blocked,
 // interior Steiner points off the surface and the flips again on those
 // faces (unblocking_points.hpp); per remaining face, conforming recovery
-// then edge- and face-added-point splitting (§5.2-5.4); Steiner suppression
+// then edge- and face-added-point splitting (§5.2-5.4), tried again in
+// other orders of the faces after a failure; Steiner suppression
 // and repositioning (§6). A face that a step cannot recover is reported,
 // never hidden.
 #pragma once
