@@ -1161,12 +1161,17 @@ TEST_CASE("recover_faces: a turned CAD cylinder recovers in another order of the
     // flips leave the faces in (the first order alone must fail: if it ever
     // succeeds, the retry is no longer what this test shows, and it says
     // so). recovery.cpp then restores the flips' mesh and tries other orders.
+    // The retry with unblocking points of any star recovers this cylinder
+    // too, with no conforming point: it is off here, so that this test
+    // keeps showing the orders (the next test shows that retry).
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/cylinder-turned-r3.off", s));
+    cbr::recover::RecoveryOptions orders_only;
+    orders_only.unblocking_star_retry = false;
     {
         Case c;
         build(c, s.xyz, s.tris);
-        cbr::recover::RecoveryOptions one_order;
+        cbr::recover::RecoveryOptions one_order = orders_only;
         one_order.face_orders = 1;
         cbr::recover::RecoveryStats stats;
         const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, one_order);
@@ -1179,11 +1184,49 @@ TEST_CASE("recover_faces: a turned CAD cylinder recovers in another order of the
     build(c, s.xyz, s.tris);
     TetMesh& m = c.m();
     cbr::recover::RecoveryStats stats;
-    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats, orders_only);
     REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
     require_valid(m, "after recover_faces");
     CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
     CHECK(stats.conforming_points > 0);
+    CHECK(m.vertex_count() == c.input_count + r.steiner.size());
+    for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+}
+
+TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points of any star") {
+    // tests/data/recover/prism-96-fan-caps-q1.off: a 96-gon prism, both caps
+    // fanned from one rim vertex, turned in space. The points that would
+    // unblock the flips on its nearly flat caps see most of a cap; their
+    // stars are over the limit (kUnblockingMaxStar), and without them
+    // conforming recovery fails in every order of the faces. recovery.cpp
+    // then starts again from the mesh the flips left, with no limit.
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-q1.off", s));
+    {
+        Case c;
+        build(c, s.xyz, s.tris);
+        cbr::recover::RecoveryOptions limited;
+        limited.unblocking_star_retry = false;
+        cbr::recover::RecoveryStats stats;
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, limited);
+        CHECK_FALSE(r.ok);  // if the first try ever succeeds, this test no longer shows the retry
+        CHECK_FALSE(r.unrecovered.empty());
+        CHECK(r.why.find("any star") == std::string::npos);
+    }
+    Case c;
+    build(c, s.xyz, s.tris);
+    TetMesh& m = c.m();
+    const std::vector<double> input(m.coordinates());
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
+    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+    require_valid(m, "after recover_faces");
+    CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+    CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
+    // The retry's points made the flips enough: no point on the surface
+    // was needed, and the Steiner points it made went again (§6).
+    CHECK(stats.steiner_generated > 0);
+    CHECK(stats.conforming_points == 0);
     CHECK(m.vertex_count() == c.input_count + r.steiner.size());
     for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
 }

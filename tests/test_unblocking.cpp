@@ -85,7 +85,7 @@ TEST_CASE("unblocking points: Schonhardt-type prisms, then flips") {
         const std::vector<double> input(m.coordinates());
 
         std::vector<VertexId> steiner;
-        const std::size_t made = cbr::recover::insert_unblocking_points(m, *c.faces, after_flips, steiner);
+        const std::size_t made = cbr::recover::insert_unblocking_points(m, *c.faces, after_flips, steiner).kept;
         CHECK(made > 0);
         REQUIRE(steiner.size() == made);
         // Ids after the input ones, in order; input points untouched.

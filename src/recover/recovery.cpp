@@ -91,6 +91,67 @@ bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, cons
     return false;
 }
 
+// Where the first flips left faces: interior points that unblock the flips
+// (stars of at most `max_star` tetrahedra), the flips again, then
+// conforming recovery and splitting of what is still missing, in other
+// orders of the faces after a failure. `missing`: in, the faces the first
+// flips left; out, those still missing after the second flips. False
+// (result.why set) when conforming recovery or splitting failed;
+// `star_refused`: whether the star limit turned an unblocking point away.
+bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
+                        std::size_t max_star, int face_orders, RecoveryStats& stats, RecoveryResult& result,
+                        bool& star_refused) {
+    const UnblockingResult unblocking = insert_unblocking_points(m, faces, missing, result.steiner, max_star);
+    star_refused = unblocking.refused_for_star > 0;
+    stats.steiner_generated += unblocking.kept;
+    if (unblocking.kept > 0) missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, FlipRounds::kWithoutDeepest);
+    // §6 before conforming recovery: the points that the recovered faces
+    // do not need go (they are marked, so none is lost); near the faces
+    // still missing, the points left would make thin tetrahedra for the
+    // points conforming recovery adds and their splitting (feeder body:
+    // with them, conforming recovery fails; without, it adds 6,948
+    // points, where it added 42,202 on the mesh of the flips alone
+    // before it failed).
+    if (unblocking.kept > 0 && !missing.empty()) suppress_vertices(m, result.steiner);
+    return missing.empty() || recover_in_face_orders(m, faces, missing, face_orders, stats, result);
+}
+
+// unblock_then_split, and when it fails where the star limit turned
+// unblocking points away: once more from the mesh the flips left, with no
+// limit. On a nearly flat fanned cap (CAD cylinders turned in space) the
+// points that unblock the flips see most of the cap, and their stars are
+// large; with them, the flips recover faces whose conforming recovery
+// fails on rounded points (turned prisms with fanned caps: 18 of 24
+// failures recover so, most with no conforming point at all). The limit
+// stays for the first try: a point of a large star costs §6 suppression
+// time (the shared cylinder: 0.1 s -> 0.4 s without it), and a surface
+// that recovers in the first try gets the same mesh as before. A failure
+// is reported as the first try's (its reason, statistics and faces).
+bool recover_after_flips(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
+                         const RecoveryOptions& options, RecoveryStats& stats, RecoveryResult& result) {
+    const mesh::TetMesh flipped = m;
+    const std::vector<std::size_t> missing_before = missing;
+    const std::vector<mesh::VertexId> steiner_before = result.steiner;
+    const RecoveryStats stats_before = stats;
+    bool star_refused = false;
+    if (unblock_then_split(m, faces, missing, kUnblockingMaxStar, options.face_orders, stats, result, star_refused))
+        return true;
+    if (!star_refused || !options.unblocking_star_retry) return false;
+    const std::string first_why = result.why;
+    const RecoveryStats first_stats = stats;
+    const std::vector<std::size_t> first_missing = missing;
+    m = flipped;
+    missing = missing_before;
+    result.steiner = steiner_before;
+    stats = stats_before;
+    if (unblock_then_split(m, faces, missing, kUnblockingAnyStar, options.face_orders, stats, result, star_refused))
+        return true;
+    result.why = first_why + " (and again with unblocking points of any star)";
+    stats = first_stats;
+    missing = first_missing;
+    return false;
+}
+
 }  // namespace
 
 RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats,
@@ -117,29 +178,18 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     std::vector<std::size_t> after_flips =
         recover_by_flips(m, faces, missing, FlipMemo::kOn, first_rounds, options.deepest_flip_budget);
     stats.recovered_by_flips = missing.size() - after_flips.size();
-    if (!after_flips.empty()) {
-        const std::size_t unblocking = insert_unblocking_points(m, faces, after_flips, result.steiner);
-        stats.steiner_generated += unblocking;
-        if (unblocking > 0)
-            after_flips = recover_by_flips(m, faces, after_flips, FlipMemo::kOn, FlipRounds::kWithoutDeepest);
-        // §6 before conforming recovery: the points that the recovered faces
-        // do not need go (they are marked, so none is lost); near the faces
-        // still missing, the points left would make thin tetrahedra for the
-        // points conforming recovery adds and their splitting (feeder body:
-        // with them, conforming recovery fails; without, it adds 6,948
-        // points, where it added 42,202 on the mesh of the flips alone
-        // before it failed).
-        if (unblocking > 0 && !after_flips.empty()) suppress_vertices(m, result.steiner);
-    }
     missing = after_flips;
-
     if (!missing.empty()) {
-        if (!recover_in_face_orders(m, faces, missing, options.face_orders, stats, result)) {
+        if (!recover_after_flips(m, faces, missing, options, stats, result)) {
             result.unrecovered = std::move(missing);
             return result;
         }
-        missing = mark_present_faces(m, faces);
-        if (!missing.empty()) result.why = "faces still missing after every added point was split";
+        // Conforming recovery ran when the second flips left faces: it
+        // recovered every face it was given (checked again here).
+        if (!missing.empty()) {
+            missing = mark_present_faces(m, faces);
+            if (!missing.empty()) result.why = "faces still missing after every added point was split";
+        }
     }
     if (!result.steiner.empty()) {
         // §6 (also when the flips recovered every face after the unblocking

@@ -3,7 +3,8 @@
 // interior Steiner points off the surface and the flips again on those
 // faces (unblocking_points.hpp); per remaining face, conforming recovery
 // then edge- and face-added-point splitting (§5.2-5.4), tried again in
-// other orders of the faces after a failure; Steiner suppression
+// other orders of the faces after a failure, and once more with unblocking
+// points of any star when their limit turned some away; Steiner suppression
 // and repositioning (§6). A face that a step cannot recover is reported,
 // never hidden.
 #pragma once
@@ -53,6 +54,11 @@ struct RecoveryOptions {
     // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
     // Not in the C API: tests set 1 to reach the first order's failures.
     int face_orders = 6;
+    // After a failure where the unblocking points' star limit turned points
+    // away: once more from the mesh the flips left, with no limit
+    // (recovery.cpp, recover_after_flips). Not in the C API: tests switch
+    // it off to reach the first try's failures.
+    bool unblocking_star_retry = true;
 };
 
 // Recovers every triangle of `faces` as a face of m, marking them as

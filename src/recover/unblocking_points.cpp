@@ -35,11 +35,6 @@ constexpr std::size_t kMaxPointsPerEdge = 8;
 constexpr double kClearance = 0.1;
 // Steps of the walk to a point.
 constexpr int kMaxWalk = 10000;
-// A point whose star is larger is not kept: it would stay a Steiner point
-// that §6 suppression tries at a cost that grows with the cube of its ball
-// (a flat fanned cylinder: one point coned to all 796 faces, 8 s where the
-// whole recovery took 0.9).
-constexpr std::size_t kMaxStar = 256;
 
 using geom::cross;
 using geom::dot;
@@ -78,8 +73,9 @@ void normal_and_scale(const mesh::TetMesh& m, const Triangle& t, double n[3], do
 
 class Unblocker {
 public:
-    Unblocker(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing)
-        : m_(m), faces_(faces), missing_(missing), incident_(mesh::incident_tets(m)) {
+    Unblocker(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing,
+              std::size_t max_star)
+        : m_(m), faces_(faces), missing_(missing), max_star_(max_star), incident_(mesh::incident_tets(m)) {
         boxes_.reserve(missing_.size());
         for (std::size_t f : missing_) {
             const Triangle& t = faces_.triangle(f);
@@ -92,13 +88,14 @@ public:
         }
     }
 
-    std::size_t run(std::vector<VertexId>& steiner) {
+    UnblockingResult run(std::vector<VertexId>& steiner) {
         const std::size_t before = steiner.size();
         for (std::size_t f : missing_) {
             const Triangle& t = faces_.triangle(f);
             for (int k = 0; k < 3; ++k) unblock_edge(t, t[k], t[(k + 1) % 3], steiner);
         }
-        return steiner.size() - before;
+        result_.kept = steiner.size() - before;
+        return result_;
     }
 
 private:
@@ -199,7 +196,9 @@ private:
     }
 
     // Inserts p if it passes the tests and ab then meets fewer than `count`
-    // tetrahedra (count updated); otherwise leaves the mesh as it was.
+    // tetrahedra (count updated) with a star of at most max_star_
+    // tetrahedra; otherwise leaves the mesh as it was (and counts a point
+    // that only its star kept out).
     bool try_point(VertexId a, VertexId b, const double* target, const double* p, double clearance,
                    std::size_t& count, std::vector<VertexId>& steiner) {
         const std::vector<Met> met = met_tets(a, b, target);
@@ -209,10 +208,11 @@ private:
         std::size_t star = 0;
         if (!insert(at, p, steiner, star)) return false;
         const std::size_t after = met_count(a, b);
-        if (after < count && star <= kMaxStar) {
+        if (after < count && star <= max_star_) {
             count = after;
             return true;
         }
+        if (after < count) ++result_.refused_for_star;
         undo_last_insertion(steiner);
         return false;
     }
@@ -308,6 +308,8 @@ private:
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
     const std::vector<std::size_t>& missing_;
+    const std::size_t max_star_;
+    UnblockingResult result_;
     std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
     ProtectedInserter inserter_;
@@ -315,9 +317,10 @@ private:
 
 }  // namespace
 
-std::size_t insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                     const std::vector<std::size_t>& missing, std::vector<VertexId>& steiner) {
-    return Unblocker(m, faces, missing).run(steiner);
+UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                          const std::vector<std::size_t>& missing, std::vector<VertexId>& steiner,
+                                          std::size_t max_star) {
+    return Unblocker(m, faces, missing, max_star).run(steiner);
 }
 
 }  // namespace cbr::recover

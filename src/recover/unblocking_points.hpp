@@ -20,16 +20,32 @@
 
 namespace cbr::recover {
 
+// A point whose star is larger than this is not kept by default: it would
+// stay a Steiner point that §6 suppression tries at a cost that grows with
+// the cube of its ball (a flat fanned cylinder: one point coned to all 796
+// faces, 8 s where the whole recovery took 0.9).
+constexpr std::size_t kUnblockingMaxStar = 256;
+// No limit on the star: recovery's retry when the limit turned points away
+// and what the flips then left defeated conforming recovery (recovery.cpp).
+constexpr std::size_t kUnblockingAnyStar = static_cast<std::size_t>(-1);
+
+struct UnblockingResult {
+    std::size_t kept = 0;              // points kept (appended to the Steiner list)
+    std::size_t refused_for_star = 0;  // points that helped but whose star was over the limit
+};
+
 // For every missing edge of the faces `missing` (indices into `faces`):
 // points at decreasing distances from points of the edge along the face's
 // normal, the side of the crossed tetrahedra first. A point is inserted only
 // when it is strictly inside the tetrahedron the walk to it ends in (so on
 // no face of the mesh, recovered faces included), on no missing triangle
 // (exact) and not nearer one than a tenth of the face's shortest edge; it
-// is kept only when the edge then meets fewer tetrahedra and its star is
-// not huge (else the mesh is restored as it was). Appends the points kept to `steiner`, in increasing
-// id order; returns their number.
-std::size_t insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
-                                     const std::vector<std::size_t>& missing, std::vector<mesh::VertexId>& steiner);
+// is kept only when the edge then meets fewer tetrahedra and its star has
+// at most `max_star` tetrahedra (else the mesh is restored as it was).
+// Appends the points kept to `steiner`, in increasing id order.
+UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                          const std::vector<std::size_t>& missing,
+                                          std::vector<mesh::VertexId>& steiner,
+                                          std::size_t max_star = kUnblockingMaxStar);
 
 }  // namespace cbr::recover
