@@ -43,6 +43,32 @@ bool recover_by_splitting(mesh::TetMesh& m, const ConstraintFaces& faces, const 
     return split;
 }
 
+// What a retry starts again from: the mesh, the statistics and the
+// Steiner points as they were.
+struct Checkpoint {
+    Checkpoint(const mesh::TetMesh& m, const RecoveryStats& s, const RecoveryResult& r)
+        : mesh(m), stats(s), steiner(r.steiner) {}
+    void restore(mesh::TetMesh& m, RecoveryStats& s, RecoveryResult& r) const {
+        m = mesh;
+        s = stats;
+        r.steiner = steiner;
+    }
+    const mesh::TetMesh mesh;
+    const RecoveryStats stats;
+    const std::vector<mesh::VertexId> steiner;
+};
+
+// What a failed attempt reported. Recovery reports a failure as its first
+// attempt's (statistics and reason), whatever the retries gave.
+struct FailureReport {
+    RecoveryStats stats;
+    std::string why;
+    void restore(RecoveryStats& s, RecoveryResult& r) const {
+        s = stats;
+        r.why = why;
+    }
+};
+
 // Attempt k's order of the faces the flips left: as they are, reversed,
 // then shuffled (Fisher-Yates on a fixed linear congruential sequence: the
 // same orders on every platform, which std::shuffle does not promise).
@@ -68,25 +94,14 @@ std::vector<std::size_t> face_order(std::vector<std::size_t> faces, int attempt)
 // reported as the first order's (its reason and its statistics).
 bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing,
                             int orders, RecoveryStats& stats, RecoveryResult& result) {
-    const mesh::TetMesh before = m;
-    const std::vector<mesh::VertexId> steiner_before = result.steiner;
-    const RecoveryStats stats_before = stats;
-    std::string first_why;
-    RecoveryStats first_stats;
+    const Checkpoint before(m, stats, result);
+    FailureReport first_failure;
     for (int attempt = 0; attempt < std::max(orders, 1); ++attempt) {
-        if (attempt > 0) {
-            m = before;
-            result.steiner = steiner_before;
-            stats = stats_before;
-        }
+        if (attempt > 0) before.restore(m, stats, result);
         if (recover_by_splitting(m, faces, face_order(missing, attempt), stats, result)) return true;
-        if (attempt == 0) {
-            first_why = result.why;
-            first_stats = stats;
-        }
+        if (attempt == 0) first_failure = {stats, result.why};
     }
-    result.why = first_why;
-    stats = first_stats;
+    first_failure.restore(stats, result);
     if (orders > 1) result.why += " (and in " + std::to_string(orders - 1) + " other orders of the faces)";
     return false;
 }
@@ -129,25 +144,20 @@ bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vec
 // is reported as the first try's (its reason, statistics and faces).
 bool recover_after_flips(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
                          const RecoveryOptions& options, RecoveryStats& stats, RecoveryResult& result) {
-    const mesh::TetMesh flipped = m;
-    const std::vector<std::size_t> missing_before = missing;
-    const std::vector<mesh::VertexId> steiner_before = result.steiner;
-    const RecoveryStats stats_before = stats;
+    const Checkpoint flipped(m, stats, result);
+    const std::vector<std::size_t> flips_left = missing;
     bool star_refused = false;
     if (unblock_then_split(m, faces, missing, kUnblockingMaxStar, options.face_orders, stats, result, star_refused))
         return true;
     if (!star_refused || !options.unblocking_star_retry) return false;
-    const std::string first_why = result.why;
-    const RecoveryStats first_stats = stats;
+    const FailureReport first_failure{stats, result.why};
     const std::vector<std::size_t> first_missing = missing;
-    m = flipped;
-    missing = missing_before;
-    result.steiner = steiner_before;
-    stats = stats_before;
+    flipped.restore(m, stats, result);
+    missing = flips_left;
     if (unblock_then_split(m, faces, missing, kUnblockingAnyStar, options.face_orders, stats, result, star_refused))
         return true;
-    result.why = first_why + " (and again with unblocking points of any star)";
-    stats = first_stats;
+    first_failure.restore(stats, result);
+    result.why += " (and again with unblocking points of any star)";
     missing = first_missing;
     return false;
 }
@@ -175,10 +185,9 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     // recover cost conforming recovery less (feeder body: 2.8 s for 27
     // faces; Steiner points inside on the hard surfaces 148 -> 149).
     const FlipRounds first_rounds = options.deep_flips ? FlipRounds::kAll : FlipRounds::kWithoutDeepest;
-    std::vector<std::size_t> after_flips =
-        recover_by_flips(m, faces, missing, FlipMemo::kOn, first_rounds, options.deepest_flip_budget);
-    stats.recovered_by_flips = missing.size() - after_flips.size();
-    missing = after_flips;
+    const std::size_t missing_after_delaunay = missing.size();
+    missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, first_rounds, options.deepest_flip_budget);
+    stats.recovered_by_flips = missing_after_delaunay - missing.size();
     if (!missing.empty()) {
         if (!recover_after_flips(m, faces, missing, options, stats, result)) {
             result.unrecovered = std::move(missing);
