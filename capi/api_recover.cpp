@@ -40,6 +40,43 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
     return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
 }
 
+// Recovery on the Delaunay mesh as it is now and, after a failure (not a
+// broken invariant), from that Delaunay mesh again with another budget
+// for the deepest flip round, each of kRetryFlipBudgets in turn. The
+// flips decide the mesh that conforming recovery and point splitting
+// start from, and where those fail (rounded points between nearly
+// coplanar faces of a surface turned in space) they fail in one flip
+// state and not in another, with no budget better than the others:
+// on turned fan-cap prisms and CAD parts each budget from 5,000 to 80,000
+// recovers some failures and not others. The first success is returned,
+// with its statistics in `stats`; a failure is the first attempt's, its
+// reason naming the other flip states tried, and the mesh is whatever the
+// last attempt left. Only where the deepest round runs with its default
+// budget (options.flip_state_retry, deep_flips, no deepest_flip_budget).
+cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
+                                                    cbr::recover::RecoveryStats& stats) {
+    const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
+    cbr::recover::RecoveryResult first =
+        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options);
+    if (first.ok || !first.invalid.empty() || !options.flip_state_retry || !options.deep_flips ||
+        options.deepest_flip_budget != 0)
+        return first;
+    for (const int budget : cbr::recover::kRetryFlipBudgets) {
+        mesh.delaunay.rebuild();
+        cbr::recover::RecoveryOptions other = options;
+        other.deepest_flip_budget = budget;
+        cbr::recover::RecoveryStats other_stats;
+        cbr::recover::RecoveryResult again =
+            cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, other_stats, other);
+        if (again.ok || !again.invalid.empty()) {
+            stats = other_stats;
+            return again;
+        }
+    }
+    first.why += " (and from " + std::to_string(std::size(cbr::recover::kRetryFlipBudgets)) + " other flip states)";
+    return first;
+}
+
 // The corners of a cube around every point of m, centred on their
 // bounding box, its half side twice the box's largest half side: each
 // corner at least that half side beyond the points in every coordinate.
@@ -78,8 +115,7 @@ void recover_in_enclosing_box(cbr_mesh& mesh, cbr::capi::RecoveryState& state, c
     const auto first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
     if (!mesh.delaunay.insert_points(box.data(), 8).ok) return;  // restored by insert_points
     cbr::recover::RecoveryStats stats;
-    cbr::recover::RecoveryResult boxed =
-        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), state.faces, stats, mesh.recovery_options);
+    cbr::recover::RecoveryResult boxed = recover_in_flip_states(mesh, state.faces, stats);
     if (!boxed.ok) {
         if (!boxed.invalid.empty()) result.invalid = boxed.invalid;
         result.why += " (and inside an enclosing box: " + boxed.why + ")";
@@ -136,15 +172,14 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         const auto start = std::chrono::steady_clock::now();
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
-        cbr::recover::RecoveryResult result =
-            cbr::recover::recover_faces(mesh->delaunay.mesh_for_update(), state.faces, state.stats, mesh->recovery_options);
+        cbr::recover::RecoveryResult result = recover_in_flip_states(*mesh, state.faces, state.stats);
         // After a failure (not a broken invariant): a second attempt inside
         // an enclosing box, which restores the Delaunay mesh itself if it fails.
-        const bool retried = !result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry;
         std::vector<cbr::mesh::VertexId> box_corners;
-        if (retried) recover_in_enclosing_box(*mesh, state, result, box_corners);
+        const bool boxed = !result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry;
+        if (boxed) recover_in_enclosing_box(*mesh, state, result, box_corners);
         if (!result.ok) {
-            if (!retried) mesh->delaunay.rebuild();  // the mesh stays as it was
+            if (!boxed) mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).
             mesh->recovery.stats = state.stats;
             mesh->recovery.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -181,6 +181,40 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
     cbr::test::check_recovered(h.m, p.xyz, p.tris);
 }
 
+TEST_CASE("a surface that fails in the default flip state is recovered from another, before any enclosing box") {
+    // tests/data/recover/prism-96-fan-caps-h1-r4.off: a turned fan-cap
+    // prism on which recovery fails with the deepest flip round's default
+    // budget and succeeds with one of kRetryFlipBudgets (both halves are
+    // checked in test_conforming_split). cbr_mesh_recover_faces tries those
+    // budgets on the Delaunay mesh of the caller's points before it adds
+    // the corners of an enclosing box: the result has no box corner, and
+    // no Steiner point beyond the points' bounding box.
+    cbr::test::OffSurface p;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r4.off", p));
+    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
+    Handle h;
+    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
+    REQUIRE_MESSAGE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(),
+                                           nullptr) == CBR_OK,
+                    h.error());
+    const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
+    CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
+    CHECK(steiner_count < 8);
+    std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
+    REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p.xyz[static_cast<std::size_t>(k)];
+    for (std::size_t i = 0; i < p.xyz.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], p.xyz[i]);
+        hi[i % 3] = std::max(hi[i % 3], p.xyz[i]);
+    }
+    for (std::size_t i = p.xyz.size(); i < xyz.size(); ++i) {
+        CHECK(xyz[i] >= lo[i % 3]);
+        CHECK(xyz[i] <= hi[i % 3]);
+    }
+    cbr::test::check_recovered(h.m, p.xyz, p.tris);
+}
+
 TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any change") {
     Handle h;
     CHECK(cbr_mesh_recover_faces(nullptr, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);

@@ -1231,6 +1231,50 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
     for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
 }
 
+TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {
+    // tests/data/recover/prism-96-fan-caps-h1-r4.off: a 96-gon prism of
+    // radius 10 and height 1, both caps fanned from one rim vertex, turned
+    // in space (tests/bench/fan_cap_prism.py 96 10 1, rotate_surface.py
+    // seed 4). With the deepest flip round's default budget, conforming
+    // recovery fails in every order of the faces and with unblocking points
+    // of any star; the flips with another budget leave a mesh from which it
+    // succeeds. cbr_mesh_recover_faces tries those budgets
+    // (kRetryFlipBudgets) after a failure; test_capi_recover checks that it
+    // does. If the default ever succeeds, this test no longer shows why the
+    // retry is there, and says so.
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r4.off", s));
+    {
+        Case c;
+        build(c, s.xyz, s.tris);
+        cbr::recover::RecoveryStats stats;
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+        CHECK_FALSE(r.ok);
+        CHECK(r.invalid.empty());
+        CHECK_FALSE(r.unrecovered.empty());
+    }
+    int recovered_in = 0;
+    for (const int budget : cbr::recover::kRetryFlipBudgets) {
+        Case c;
+        build(c, s.xyz, s.tris);
+        TetMesh& m = c.m();
+        const std::vector<double> input(m.coordinates());
+        cbr::recover::RecoveryOptions other;
+        other.deepest_flip_budget = budget;
+        cbr::recover::RecoveryStats stats;
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats, other);
+        CHECK(r.invalid.empty());
+        if (!r.ok) continue;
+        ++recovered_in;
+        require_valid(m, "after recover_faces");
+        CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+        CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
+        CHECK(m.vertex_count() == c.input_count + r.steiner.size());
+        for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+    }
+    CHECK(recovered_in > 0);
+}
+
 TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)") {
     // Same inputs as the ball transformation test above. Before the
     // crossing's tetrahedra were kept whole by the cavity correction,

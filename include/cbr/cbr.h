@@ -283,12 +283,17 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
    connected sets of tetrahedra separated by input triangles: 0 outside,
    then 1, 2, ... numbered by the smallest input triangle on their boundary
    (and its side), so the numbering depends on the input only.
-   When recovery fails on the Delaunay mesh of the points, it is tried once
-   more with the eight corners of a cube around them added (every input
-   triangle then lies away from the convex hull); if that succeeds, the
-   corners are the first Steiner points (ids right after the caller's
-   points), in the exterior, and the statistics are those of the second
-   attempt.
+   When recovery fails on the Delaunay mesh of the points, it starts again
+   from that mesh with other budgets for the deepest flip round (10,000,
+   then 30,000 edge removals a face; only with CBR_PARAM_RECOVERY_DEEP_FLIPS
+   at 1): the flips decide where the later steps start, and on nearly flat
+   parts one start fails where another succeeds. If all fail, the same is
+   tried with the eight corners of a cube around the points added (every
+   input triangle then lies away from the convex hull); if that succeeds,
+   the corners are the first Steiner points (ids right after the caller's
+   points), in the exterior. The statistics are those of the attempt that
+   succeeded (of the first one after a failure). A failing recovery runs
+   every attempt, so it takes several times as long as a successful one.
    Errors (the mesh is then unchanged):
      CBR_ERR_INVALID_ARGUMENT  NULL mesh, NULL tris with count > 0, negative
                                count, or called twice;

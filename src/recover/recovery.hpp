@@ -59,7 +59,17 @@ struct RecoveryOptions {
     // (recovery.cpp, recover_after_flips). Not in the C API: tests switch
     // it off to reach the first try's failures.
     bool unblocking_star_retry = true;
+    // cbr_mesh_recover_faces: after a failure, before the enclosing box,
+    // recovery again from the Delaunay mesh with the deepest flip round's
+    // budget at each of kRetryFlipBudgets (api_recover.cpp). Not in the C
+    // API: tests switch it off to reach the first attempt's failures.
+    bool flip_state_retry = true;
 };
+
+// The budgets of the deepest flip round (edge removals a face) that
+// cbr_mesh_recover_faces tries after a failure with the default one, in
+// this order (see RecoveryOptions::flip_state_retry).
+inline constexpr int kRetryFlipBudgets[] = {10000, 30000};
 
 // Recovers every triangle of `faces` as a face of m, marking them as
 // constraint faces. Steiner points are appended to m's vertices; ids below
