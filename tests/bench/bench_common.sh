@@ -46,8 +46,13 @@ bench_surfaces() {
 # (extra CMake arguments in `extra`, `jobs` in parallel); sets `cbr`.
 bench_build_cbr() {
     echo "== libcbr and cbr: Release build in $build"
-    # shellcheck disable=SC2086  # $extra is a list of arguments
-    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCBR_BUILD_TESTS=OFF $extra >/dev/null
+    # A new build directory leaves the tests out; an existing one (a
+    # developer's own build given as CBR_BENCH_BUILD) keeps its setting, so
+    # that a benchmark run does not silently drop its test executables.
+    local tests=-DCBR_BUILD_TESTS=OFF
+    [ -f "$build/CMakeCache.txt" ] && tests=
+    # shellcheck disable=SC2086  # $extra and $tests are lists of arguments
+    cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release $tests $extra >/dev/null
     cmake --build "$build" -j "$jobs" --target cbr_cli >/dev/null
     cbr=$build/cbr
     [ -x "$cbr" ] || { echo "$1: $cbr was not built" >&2; exit 1; }
