@@ -215,6 +215,37 @@ TEST_CASE("a surface that fails in the default flip state is recovered from anot
     cbr::test::check_recovered(h.m, p.xyz, p.tris);
 }
 
+TEST_CASE("CBR_PARAM_RECOVERY_RETRIES: on by default; off, the first attempt's failure is reported at once") {
+    // The fixture of the test above fails in the first attempt and recovers
+    // in a later one.
+    cbr::test::OffSurface p;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r4.off", p));
+    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
+    const auto count = static_cast<std::int64_t>(p.tris.size() / 3);
+    Handle h;
+    double v = -1;
+    CHECK(cbr_mesh_get_param(h.m, CBR_PARAM_RECOVERY_RETRIES, &v) == CBR_OK);
+    CHECK(v == 1);
+    CHECK(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_RETRIES, 2) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(contains(h.error(), "CBR_PARAM_RECOVERY_RETRIES must be 0 or 1"));
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_RETRIES, 0) == CBR_OK);
+    CHECK(cbr_mesh_get_param(h.m, CBR_PARAM_RECOVERY_RETRIES, &v) == CBR_OK);
+    CHECK(v == 0);
+    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
+    const auto delaunay = tets_of(h.m);
+    CHECK(cbr_mesh_recover_faces(h.m, count, p.tris.data(), nullptr) == CBR_ERR_RECOVERY_FAILED);
+    const std::string why = h.error();
+    CHECK(contains(why, "could not recover"));
+    CHECK_FALSE(contains(why, "other flip states"));
+    CHECK_FALSE(contains(why, "enclosing box"));
+    CHECK(tets_of(h.m) == delaunay);  // the mesh is as it was
+    CHECK(cbr_mesh_point_count(h.m) == n);
+    // On again, the same handle recovers the surface.
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_RETRIES, 1) == CBR_OK);
+    REQUIRE_MESSAGE(cbr_mesh_recover_faces(h.m, count, p.tris.data(), nullptr) == CBR_OK, h.error());
+    cbr::test::check_recovered(h.m, p.xyz, p.tris);
+}
+
 TEST_CASE("recover_faces rejects bad arguments and invalid surfaces before any change") {
     Handle h;
     CHECK(cbr_mesh_recover_faces(nullptr, 0, nullptr, nullptr) == CBR_ERR_INVALID_ARGUMENT);

@@ -180,6 +180,11 @@ run_local_outputs() {
     expect 0 "" recover --help && report_has "--no-deep-flips  skip the deepest flip searches"
     expect 0 "" mesh --help && report_has "--no-deep-flips  skip the deepest flip searches of recovery"
     expect 0 "" recover --no-deep-flips "$tmp/cube.off" -o "$tmp/cube-shallow.mesh" && report_has "Table I"
+    # --no-retries (CBR_PARAM_RECOVERY_RETRIES = 0; its effect is checked in
+    # test_capi_recover).
+    expect 0 "" recover --help && report_has "--no-retries     report a failure of the first attempt at once"
+    expect 0 "" mesh --help && report_has "--no-retries     no further recovery attempts after a failure"
+    expect 0 "" recover --no-retries "$tmp/cube.off" -o "$tmp/cube-once.mesh" && report_has "Table I"
     # An open surface with --allow-open alone: no tetrahedron, no quality.
     expect 0 "" recover --allow-open "$tmp/open.off" -o "$tmp/open.vtu" --json "$tmp/open.json" &&
         report_has "average quality +-$" && report_has "minimum dihedral angle +-$"

@@ -139,6 +139,12 @@ extern "C" {
    Steiner points in 24 s; with 0, 202 in 17.5 s). 0 = without that round.
    0 or 1. */
 #define CBR_PARAM_RECOVERY_DEEP_FLIPS 9
+/* Option of cbr_mesh_recover_faces: 1 (default) = after a failure on the
+   Delaunay mesh of the points, recovery is attempted again from other flip
+   states and inside an enclosing box (see cbr_mesh_recover_faces; up to six
+   attempts in all, so a failure takes several times as long as one
+   attempt). 0 = the first attempt's failure is reported at once. 0 or 1. */
+#define CBR_PARAM_RECOVERY_RETRIES 10
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */

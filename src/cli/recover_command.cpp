@@ -11,7 +11,7 @@ namespace {
 void print_help(std::FILE* out) {
     std::fprintf(out,
                  "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open]\n"
-                 "       [--no-deep-flips] [-q]\n"
+                 "       [--no-deep-flips] [--no-retries] [-q]\n"
                  "\n"
                  "Tetrahedralizes the points of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh) and recovers every one of its triangles as a face, without\n"
@@ -29,6 +29,9 @@ void print_help(std::FILE* out) {
                  "                   but it bounds no region: use with --keep-exterior)\n"
                  "  --no-deep-flips  skip the deepest flip searches: faster on surfaces whose\n"
                  "                   faces flips find hard, for more Steiner points\n"
+                 "  --no-retries     report a failure of the first attempt at once, without\n"
+                 "                   the attempts from other flip states and inside an\n"
+                 "                   enclosing box (a failure then takes one attempt's time)\n"
                  "  -q               print nothing but errors (and no progress line)\n"
                  "\n"
                  "A progress line is shown on stderr for steps longer than a second when\n"

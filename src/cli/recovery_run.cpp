@@ -35,6 +35,7 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
     steps.begin("inserting points");
     status = cbr_mesh_set_param(m, CBR_PARAM_KEEP_EXTERIOR, options.keep_exterior ? 1 : 0);
     if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_RECOVERY_DEEP_FLIPS, options.deep_flips ? 1 : 0);
+    if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_RECOVERY_RETRIES, options.retries ? 1 : 0);
     if (status == CBR_OK) status = cbr_mesh_insert_points(m, np, surface.xyz.data());
     if (status != CBR_OK) return api_failure(m, status);
     const std::int64_t delaunay_tets = cbr_mesh_tet_count(m);

@@ -23,6 +23,7 @@ struct RecoveryOptions {
     bool keep_exterior = false;
     bool allow_open = false;  // accept a surface with open edges
     bool deep_flips = true;   // CBR_PARAM_RECOVERY_DEEP_FLIPS
+    bool retries = true;      // CBR_PARAM_RECOVERY_RETRIES
     // `cbr mesh`: after recovery, cbr_mesh_refine (full mesh generation)
     // with CBR_PARAM_REFINE_SIZE = size (0: from the surface).
     bool refine = false;

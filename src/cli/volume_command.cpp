@@ -30,6 +30,7 @@ struct VolumeArgs : OutputOptions {
     bool keep_exterior = false;
     bool allow_open = false;
     bool deep_flips = true;
+    bool retries = true;
 };
 
 // A finite number > 0 (or >= 0 with allow_zero).
@@ -68,6 +69,8 @@ int parse_args(int argc, char** argv, const VolumeCommand& command, VolumeArgs& 
             args.allow_open = true;
         } else if (a == "--no-deep-flips") {
             args.deep_flips = false;
+        } else if (a == "--no-retries") {
+            args.retries = false;
         } else if (!a.empty() && a[0] == '-') {
             return usage_error(name, "unknown option '" + a + "'");
         } else if (!args.input.empty()) {
@@ -102,6 +105,7 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
         options.keep_exterior = args.keep_exterior;
         options.allow_open = args.allow_open;
         options.deep_flips = args.deep_flips;
+        options.retries = args.retries;
         options.refine = command.refine;
         options.size = args.size;
         options.growth = args.growth;

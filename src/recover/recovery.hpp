@@ -47,8 +47,8 @@ struct RecoveryOptions {
     int deepest_flip_budget = 0;
     // cbr_mesh_recover_faces: after a failure, a second attempt with the
     // eight corners of an enclosing box added to the Delaunay mesh (api_
-    // recover.cpp). Not in the C API: tests switch it off to reach the
-    // first attempt's failures.
+    // recover.cpp). CBR_PARAM_RECOVERY_RETRIES sets it and flip_state_retry
+    // together.
     bool enclosing_box_retry = true;
     // Orders of the faces that conforming recovery and splitting try, each
     // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
@@ -61,8 +61,8 @@ struct RecoveryOptions {
     bool unblocking_star_retry = true;
     // cbr_mesh_recover_faces: after a failure, before the enclosing box,
     // recovery again from the Delaunay mesh with the deepest flip round's
-    // budget at each of kRetryFlipBudgets (api_recover.cpp). Not in the C
-    // API: tests switch it off to reach the first attempt's failures.
+    // budget at each of kRetryFlipBudgets (api_recover.cpp). Off with
+    // CBR_PARAM_RECOVERY_RETRIES = 0 (with enclosing_box_retry).
     bool flip_state_retry = true;
 };
 
