@@ -60,6 +60,15 @@ std::vector<std::int64_t> ball_surface(const std::vector<double>& xyz, const std
     return tris;
 }
 
+// The smallest box holding the points xyz (x, y, z, x, ...; at least one).
+void bounding_box(const std::vector<double>& xyz, double lo[3], double hi[3]) {
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = xyz[static_cast<std::size_t>(k)];
+    for (std::size_t i = 0; i < xyz.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+        hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("recovering a surface whose faces are all present, and reading the regions") {
@@ -158,11 +167,7 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
     std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
     REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
     double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p.xyz[static_cast<std::size_t>(k)];
-    for (std::size_t i = 0; i < p.xyz.size(); ++i) {
-        lo[i % 3] = std::min(lo[i % 3], p.xyz[i]);
-        hi[i % 3] = std::max(hi[i % 3], p.xyz[i]);
-    }
+    bounding_box(p.xyz, lo, hi);
     // The corners: ids n .. n + 7, beyond the points' bounding box in every
     // coordinate, used by no tetrahedron of the bounded region.
     std::set<std::int64_t> corners;
@@ -203,11 +208,7 @@ TEST_CASE("a surface that fails in the default flip state is recovered from anot
     std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
     REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
     double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p.xyz[static_cast<std::size_t>(k)];
-    for (std::size_t i = 0; i < p.xyz.size(); ++i) {
-        lo[i % 3] = std::min(lo[i % 3], p.xyz[i]);
-        hi[i % 3] = std::max(hi[i % 3], p.xyz[i]);
-    }
+    bounding_box(p.xyz, lo, hi);
     for (std::size_t i = p.xyz.size(); i < xyz.size(); ++i) {
         CHECK(xyz[i] >= lo[i % 3]);
         CHECK(xyz[i] <= hi[i % 3]);

@@ -235,6 +235,19 @@ struct SplitStats {
 // Conforming recovery of every face of `missing`, with its checks, then
 // the splitting of every added point (edge points first) with its checks;
 // at the end every input triangle is a face.
+// What recover_faces promises on success (recovery.hpp), for the case's
+// mesh after result r: a valid mesh, every input triangle a face, the
+// input points where they were (`input`: their coordinates before), the
+// Steiner points after them and none on an input triangle.
+void check_recovered_case(Case& c, const cbr::recover::RecoveryResult& r, const std::vector<double>& input) {
+    TetMesh& m = c.m();
+    require_valid(m, "after recover_faces");
+    CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
+    CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
+    CHECK(m.vertex_count() == c.input_count + r.steiner.size());
+    for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+}
+
 SplitStats conform_and_split(Case& c, const std::vector<std::size_t>& missing) {
     TetMesh& m = c.m();
     const ConstraintFaces& faces = *c.faces;
@@ -1215,20 +1228,15 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
     }
     Case c;
     build(c, s.xyz, s.tris);
-    TetMesh& m = c.m();
-    const std::vector<double> input(m.coordinates());
+    const std::vector<double> input(c.m().coordinates());
     cbr::recover::RecoveryStats stats;
-    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
     REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
-    require_valid(m, "after recover_faces");
-    CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
-    CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
+    check_recovered_case(c, r, input);
     // The retry's points made the flips enough: no point on the surface
     // was needed, and the Steiner points it made went again (§6).
     CHECK(stats.steiner_generated > 0);
     CHECK(stats.conforming_points == 0);
-    CHECK(m.vertex_count() == c.input_count + r.steiner.size());
-    for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
 }
 
 TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {
@@ -1257,20 +1265,15 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     for (const int budget : cbr::recover::kRetryFlipBudgets) {
         Case c;
         build(c, s.xyz, s.tris);
-        TetMesh& m = c.m();
-        const std::vector<double> input(m.coordinates());
+        const std::vector<double> input(c.m().coordinates());
         cbr::recover::RecoveryOptions other;
         other.deepest_flip_budget = budget;
         cbr::recover::RecoveryStats stats;
-        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats, other);
+        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, other);
         CHECK(r.invalid.empty());
         if (!r.ok) continue;
         ++recovered_in;
-        require_valid(m, "after recover_faces");
-        CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
-        CHECK(std::equal(input.begin(), input.end(), m.coordinates().begin()));
-        CHECK(m.vertex_count() == c.input_count + r.steiner.size());
-        for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
+        check_recovered_case(c, r, input);
     }
     CHECK(recovered_in > 0);
 }
