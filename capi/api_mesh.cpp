@@ -121,8 +121,7 @@ CBR_API int cbr_mesh_set_param(cbr_mesh* mesh, int key, double value) {
             case CBR_PARAM_RECOVERY_RETRIES:
                 require(value == 0.0 || value == 1.0, CBR_ERR_INVALID_ARGUMENT,
                         "CBR_PARAM_RECOVERY_RETRIES must be 0 or 1");
-                mesh->recovery_options.flip_state_retry = value != 0.0;
-                mesh->recovery_options.enclosing_box_retry = value != 0.0;
+                mesh->recovery_options.retries = value != 0.0;
                 return CBR_OK;
             default:
                 throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
@@ -147,8 +146,7 @@ CBR_API int cbr_mesh_get_param(const cbr_mesh* mesh, int key, double* value) {
             case CBR_PARAM_REFINE_GROWTH: *value = mesh->refine_options.growth; return CBR_OK;
             case CBR_PARAM_RECOVERY_DEEP_FLIPS: *value = mesh->recovery_options.deep_flips ? 1.0 : 0.0; return CBR_OK;
             case CBR_PARAM_RECOVERY_RETRIES:
-                *value = mesh->recovery_options.flip_state_retry || mesh->recovery_options.enclosing_box_retry ? 1.0
-                                                                                                               : 0.0;
+                *value = mesh->recovery_options.retries ? 1.0 : 0.0;
                 return CBR_OK;
             default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }

@@ -52,13 +52,13 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
 // with its statistics in `stats`; a failure is the first attempt's, its
 // reason naming the other flip states tried, and the mesh is whatever the
 // last attempt left. Only where the deepest round runs with its default
-// budget (options.flip_state_retry, deep_flips, no deepest_flip_budget).
+// budget (options.retries, deep_flips, no deepest_flip_budget).
 cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
                                                     cbr::recover::RecoveryStats& stats) {
     const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
     cbr::recover::RecoveryResult first =
         cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options);
-    if (first.ok || !first.invalid.empty() || !options.flip_state_retry || !options.deep_flips ||
+    if (first.ok || !first.invalid.empty() || !options.retries || !options.deep_flips ||
         options.deepest_flip_budget != 0)
         return first;
     for (const int budget : cbr::recover::kRetryFlipBudgets) {
@@ -96,18 +96,19 @@ std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
     return corners;
 }
 
-// The second attempt of cbr_mesh_recover_faces, after `result` failed:
-// the Delaunay mesh of the points again, with the corners of
-// enclosing_box() added, so that every input triangle is interior to the
-// mesh, away from its convex hull. Surfaces with nearly planar faces on
-// the hull (a rotated CAD cylinder's fanned caps: the flat layer between
-// them and the hull leaves no room for the points that split them) often
-// recover so. On success `result` and state.stats are the second
-// attempt's, and `corners` lists the eight corners: they follow the
-// caller's points and count as Steiner points (outside every bounded
-// region). On failure the second attempt's reason is added to
-// result.why (its invalid report replaces the first's), and the mesh is
-// the Delaunay mesh of the caller's points once more.
+// The last attempts of cbr_mesh_recover_faces, after `result` failed in
+// every flip state: the Delaunay mesh of the points again, with the
+// corners of enclosing_box() added, so that every input triangle is
+// interior to the mesh, away from its convex hull, and recover_in_flip_states
+// there. Surfaces with nearly planar faces on the hull (a rotated CAD
+// cylinder's fanned caps: the flat layer between them and the hull leaves
+// no room for the points that split them) often recover so. On success
+// `result` and state.stats are the successful attempt's, and `corners`
+// lists the eight corners: they follow the caller's points and count as
+// Steiner points (outside every bounded region). On failure the boxed
+// attempts' reason is added to result.why (their invalid report replaces
+// the first's), and the mesh is the Delaunay mesh of the caller's points
+// once more.
 void recover_in_enclosing_box(cbr_mesh& mesh, cbr::capi::RecoveryState& state, cbr::recover::RecoveryResult& result,
                               std::vector<cbr::mesh::VertexId>& corners) {
     mesh.delaunay.rebuild();
@@ -176,7 +177,7 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         // After a failure (not a broken invariant): a second attempt inside
         // an enclosing box, which restores the Delaunay mesh itself if it fails.
         std::vector<cbr::mesh::VertexId> box_corners;
-        const bool boxed = !result.ok && result.invalid.empty() && mesh->recovery_options.enclosing_box_retry;
+        const bool boxed = !result.ok && result.invalid.empty() && mesh->recovery_options.retries;
         if (boxed) recover_in_enclosing_box(*mesh, state, result, box_corners);
         if (!result.ok) {
             if (!boxed) mesh->delaunay.rebuild();  // the mesh stays as it was

@@ -45,11 +45,11 @@ struct RecoveryOptions {
     // flip_recovery.cpp). Not in the C API: tests vary it to reach other
     // mesh states for the steps after the flips.
     int deepest_flip_budget = 0;
-    // cbr_mesh_recover_faces: after a failure, a second attempt with the
-    // eight corners of an enclosing box added to the Delaunay mesh (api_
-    // recover.cpp). CBR_PARAM_RECOVERY_RETRIES sets it and flip_state_retry
-    // together.
-    bool enclosing_box_retry = true;
+    // cbr_mesh_recover_faces (api_recover.cpp), after a failure: recovery
+    // again from the Delaunay mesh with the deepest flip round's budget at
+    // each of kRetryFlipBudgets, then all of that again with the eight
+    // corners of an enclosing box added. CBR_PARAM_RECOVERY_RETRIES.
+    bool retries = true;
     // Orders of the faces that conforming recovery and splitting try, each
     // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
     // Not in the C API: tests set 1 to reach the first order's failures.
@@ -59,16 +59,11 @@ struct RecoveryOptions {
     // (recovery.cpp, recover_after_flips). Not in the C API: tests switch
     // it off to reach the first try's failures.
     bool unblocking_star_retry = true;
-    // cbr_mesh_recover_faces: after a failure, before the enclosing box,
-    // recovery again from the Delaunay mesh with the deepest flip round's
-    // budget at each of kRetryFlipBudgets (api_recover.cpp). Off with
-    // CBR_PARAM_RECOVERY_RETRIES = 0 (with enclosing_box_retry).
-    bool flip_state_retry = true;
 };
 
 // The budgets of the deepest flip round (edge removals a face) that
 // cbr_mesh_recover_faces tries after a failure with the default one, in
-// this order (see RecoveryOptions::flip_state_retry).
+// this order (see RecoveryOptions::retries).
 inline constexpr int kRetryFlipBudgets[] = {10000, 30000};
 
 // Recovers every triangle of `faces` as a face of m, marking them as
