@@ -1033,3 +1033,54 @@ TEST_CASE("ball, shell and incident_tets agree with brute-force scans") {
         CHECK(expected.count(e) == 1);
     }
 }
+
+// The order in which the free list hands out slots (then new ones).
+std::vector<TetId> allocation_order(TetMesh m) {
+    std::vector<TetId> order;
+    for (std::size_t k = m.free_count() + 2; k > 0; --k) order.push_back(m.allocate_tet());
+    return order;
+}
+
+TEST_CASE("the undo journal puts back every slot, flag and the free list") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(200, 41));
+    mark_random_faces(m, 30, 43);
+    random_flips(m, 600, 47);
+    // A free list to take from and push onto (flips alone reuse their slots).
+    std::vector<TetId> spare;
+    for (int k = 0; k < 12; ++k) spare.push_back(m.allocate_tet());
+    for (TetId t : spare) m.release_tet(t);
+    Rng rng(53);
+    std::vector<TetId> created;
+    int changed_runs = 0;
+    m.open_journal();
+    for (int run = 0; run < 20; ++run) {
+        const Snapshot before(m);
+        const std::vector<TetId> order = allocation_order(m);
+        // Flips of every kind (slots taken off the free list, appended,
+        // released), marks set and cleared.
+        int done = 0;
+        for (int a = 0; a < 200; ++a) {
+            bool hull = false;
+            done += random_flip(m, rng, static_cast<Kind>(rng() % kKinds), hull, created) == FlipResult::kDone;
+        }
+        const TetId t = random_live(m, rng);
+        m.set_constrained(t, 0, !m.is_constrained(t, 0));
+        changed_runs += done > 0 && !(Snapshot(m) == before);
+        m.undo_journal();
+        REQUIRE((Snapshot(m) == before));
+        REQUIRE(allocation_order(m) == order);
+        require_valid(m);
+    }
+    CHECK(changed_runs == 20);
+    // Closed, the journal keeps what was done.
+    m.close_journal();
+    const Snapshot before(m);
+    int done = 0;
+    for (int a = 0; a < 200; ++a) {
+        bool hull = false;
+        done += random_flip(m, rng, static_cast<Kind>(rng() % kKinds), hull, created) == FlipResult::kDone;
+    }
+    REQUIRE(done > 0);
+    CHECK_FALSE((Snapshot(m) == before));
+    require_valid(m);
+}

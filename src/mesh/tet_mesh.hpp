@@ -89,20 +89,35 @@ public:
     std::uint8_t flags(TetId t) const { return flags_[t]; }
 
     void set_vertices(TetId t, VertexId a, VertexId b, VertexId c, VertexId d);
-    void set_vertex(TetId t, int i, VertexId v) { tets_[t].v[i] = v; }
+    void set_vertex(TetId t, int i, VertexId v) {
+        before_change(t);
+        tets_[t].v[i] = v;
+    }
     // Makes the two half-facets neighbours of each other.
     void link(FacetRef a, FacetRef b) {
+        before_change(facet_tet(a));
+        before_change(facet_tet(b));
         tets_[facet_tet(a)].n[facet_face(a)] = b;
         tets_[facet_tet(b)].n[facet_face(b)] = a;
     }
-    void set_neighbor(TetId t, int f, FacetRef r) { tets_[t].n[f] = r; }
-    void set_mark(TetId t, std::uint8_t mark) { flags_[t] |= mark; }
-    void clear_mark(TetId t, std::uint8_t mark) { flags_[t] &= static_cast<std::uint8_t>(~mark); }
+    void set_neighbor(TetId t, int f, FacetRef r) {
+        before_change(t);
+        tets_[t].n[f] = r;
+    }
+    void set_mark(TetId t, std::uint8_t mark) {
+        before_change(t);
+        flags_[t] |= mark;
+    }
+    void clear_mark(TetId t, std::uint8_t mark) {
+        before_change(t);
+        flags_[t] &= static_cast<std::uint8_t>(~mark);
+    }
     bool has_mark(TetId t, std::uint8_t mark) const { return (flags_[t] & mark) != 0; }
 
     // Face f of t is a recovered constraint face (marked on both sides).
     bool is_constrained(TetId t, int f) const { return (flags_[t] & constraint_bit(f)) != 0; }
     void set_constrained(TetId t, int f, bool on) {
+        before_change(t);
         if (on) flags_[t] |= constraint_bit(f);
         else flags_[t] &= static_cast<std::uint8_t>(~constraint_bit(f));
     }
@@ -116,6 +131,23 @@ public:
     void reserve_tets(std::size_t count);
     void clear_tets();
 
+    // --- undo journal ---------------------------------------------------
+    // While the journal is open, the first change to each tetrahedron slot
+    // (record or flags) saves what the slot held, and the free list's
+    // entries that allocation takes below where it stood are kept:
+    // undo_journal() then puts the slots, flags and free list back exactly
+    // as they were when the journal was opened, and drops the slots
+    // appended since. What it costs is proportional to the slots changed,
+    // where a copy of the mesh costs its size (flip recovery's rollback of
+    // a failed search). Points are not journaled: no point may be added,
+    // removed or moved while it is open.
+    void open_journal();
+    // Back to the mesh as it was at open_journal(); the journal stays open
+    // and empty.
+    void undo_journal();
+    void close_journal();
+    bool journal_open() const { return journal_open_; }
+
 private:
     static std::uint8_t constraint_bit(int f) { return static_cast<std::uint8_t>(kFlagConstraintFace0 << f); }
 
@@ -125,10 +157,30 @@ private:
     };
     static_assert(sizeof(TetRecord) == 32, "two tetrahedra per cache line");
 
+    // A slot as it was when the journal was opened.
+    struct SavedSlot {
+        TetRecord record;
+        TetId slot;
+        std::uint8_t flags;
+    };
+    void before_change(TetId t) {
+        if (journal_open_ && t < journal_.slot_count && journal_.stamp[t] != journal_.epoch) save_slot(t);
+    }
+    void save_slot(TetId t);
+
     std::vector<double> coords_;
     std::vector<TetRecord> tets_;
     std::vector<std::uint8_t> flags_;
     std::vector<TetId> free_;
+    bool journal_open_ = false;
+    struct Journal {
+        std::uint32_t epoch = 0;            // one per open_journal()
+        std::vector<std::uint32_t> stamp;   // per slot: the epoch it was saved in
+        std::vector<SavedSlot> saved;
+        std::size_t slot_count = 0;         // slots when opened; later ones are dropped
+        std::size_t free_low = 0;           // the free list's lowest size since
+        std::vector<TetId> free_taken;      // its entries taken below where it stood, in order
+    } journal_;
 };
 
 }  // namespace cbr::mesh
