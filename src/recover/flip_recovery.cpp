@@ -87,6 +87,7 @@ public:
         }
         protect_ = [this](VertexId a, VertexId b) { return is_input_edge(a, b); };
         changed_at_.assign(m_.vertex_count(), 0);
+        incident_saved_at_.assign(m_.vertex_count(), 0);
         tried_at_.assign(faces_.size(), 0);
     }
 
@@ -118,25 +119,31 @@ public:
 private:
     // Recovers face i, or leaves the mesh exactly as it was: the mesh's
     // journal takes back what the attempt changed, and incident_'s changes
-    // are undone from their own log. (A copy of the mesh taken before each
-    // attempt that followed a change was 20% of the golf ball's run.)
+    // are undone from their own log (each vertex's entry as the attempt
+    // found it). A copy of the mesh taken before each attempt that followed
+    // a change was a fifth of the golf ball's run.
     bool recover_or_roll_back(std::size_t i) {
         const FailedSearches::State before = state_;
-        m_.open_journal();
-        incident_undo_.clear();
-        journal_incident_ = true;
-        const bool recovered = recover(i);
-        journal_incident_ = false;
-        if (!recovered) {
-            touched_.clear();  // rolled back: the mesh is as the attempt found it
-            if (state_ != before) {
-                m_.undo_journal();
-                for (auto e = incident_undo_.rbegin(); e != incident_undo_.rend(); ++e) incident_[e->first] = e->second;
-                set_state(before);
+        struct Journal {  // closed however the attempt ends
+            FlipRecovery& r;
+            explicit Journal(FlipRecovery& f) : r(f) {
+                r.m_.open_journal();
+                r.incident_undo_.clear();
+                r.journal_incident_ = true;
             }
+            ~Journal() {
+                r.journal_incident_ = false;
+                r.m_.close_journal();
+            }
+        } journal(*this);
+        if (recover(i)) return true;
+        touched_.clear();  // rolled back: the mesh is as the attempt found it
+        if (state_ != before) {
+            m_.undo_journal();
+            for (const auto& [v, t] : incident_undo_) incident_[v] = t;
+            set_state(before);
         }
-        m_.close_journal();
-        return recovered;
+        return false;
     }
 
     bool recover(std::size_t i) {
@@ -153,10 +160,17 @@ private:
         for (TetId t : created_)
             for (int i = 0; i < 4; ++i)
                 if (m_.vertex(t, i) != kGhostVertex) {
-                    if (journal_incident_) incident_undo_.emplace_back(m_.vertex(t, i), incident_[m_.vertex(t, i)]);
+                    if (journal_incident_) save_incident(m_.vertex(t, i));
                     incident_[m_.vertex(t, i)] = t;
                     touched_.push_back(m_.vertex(t, i));
                 }
+    }
+
+    // incident_[v] as the attempt found it, once per attempt.
+    void save_incident(VertexId v) {
+        if (incident_saved_at_[v] == attempts_) return;
+        incident_saved_at_[v] = attempts_;
+        incident_undo_.emplace_back(v, incident_[v]);
     }
 
     void set_state(FailedSearches::State s) {
@@ -400,9 +414,11 @@ private:
     Search search_ = kSearches[0];
     int budget_ = 0;
     std::vector<TetId> incident_;
-    // recover_or_roll_back: incident_'s old entries while it runs.
+    // recover_or_roll_back: incident_'s old entries while it runs, and
+    // per vertex the attempt that saved its entry.
     bool journal_incident_ = false;
     std::vector<std::pair<VertexId, TetId>> incident_undo_;
+    std::vector<std::uint64_t> incident_saved_at_;
     mesh::KeyTable<bool> input_edges_;
     mesh::EdgeProtect protect_;
     // Kept through rollbacks: a ring without a valid triangulation stays so.
