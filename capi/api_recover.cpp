@@ -174,8 +174,9 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
         cbr::recover::RecoveryResult result = recover_in_flip_states(*mesh, state.faces, state.stats);
-        // After a failure (not a broken invariant): a second attempt inside
-        // an enclosing box, which restores the Delaunay mesh itself if it fails.
+        // After a failure in every flip state (not a broken invariant): the
+        // attempts inside an enclosing box, which restore the Delaunay mesh
+        // themselves if they fail.
         std::vector<cbr::mesh::VertexId> box_corners;
         const bool boxed = !result.ok && result.invalid.empty() && mesh->recovery_options.retries;
         if (boxed) recover_in_enclosing_box(*mesh, state, result, box_corners);

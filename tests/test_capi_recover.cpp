@@ -60,6 +60,25 @@ std::vector<std::int64_t> ball_surface(const std::vector<double>& xyz, const std
     return tris;
 }
 
+// Reads tests/data/recover/`name` into p, inserts its points into h and
+// recovers its faces, which must succeed; returns the number of its points.
+std::int64_t recover_fixture(const char* name, cbr::test::OffSurface& p, Handle& h) {
+    REQUIRE(cbr::test::read_off(std::string(CBR_TEST_DATA_DIR "/recover/") + name, p));
+    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
+    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
+    REQUIRE_MESSAGE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(),
+                                           nullptr) == CBR_OK,
+                    h.error());
+    return n;
+}
+
+// Every point of the mesh, the caller's then the Steiner points.
+std::vector<double> points_of(const Handle& h) {
+    std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
+    REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
+    return xyz;
+}
+
 // The smallest box holding the points xyz (x, y, z, x, ...; at least one).
 void bounding_box(const std::vector<double>& xyz, double lo[3], double hi[3]) {
     for (int k = 0; k < 3; ++k) lo[k] = hi[k] = xyz[static_cast<std::size_t>(k)];
@@ -152,20 +171,15 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
     // caller's points and are Steiner points of the exterior; if the first
     // attempt ever succeeds, they are gone and this test says so.
     cbr::test::OffSurface p;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-64-fan-caps-h20-q2.off", p));
-    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
     Handle h;
-    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
-    REQUIRE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(), nullptr) ==
-            CBR_OK);
+    const std::int64_t n = recover_fixture("prism-64-fan-caps-h20-q2.off", p, h);
     const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
     CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
     CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) == static_cast<double>(steiner_count));
     std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
     REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
     const std::set<std::int64_t> steiner(ids.begin(), ids.end());
-    std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
-    REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
+    const std::vector<double> xyz = points_of(h);
     double lo[3], hi[3];
     bounding_box(p.xyz, lo, hi);
     // The corners: ids n .. n + 7, beyond the points' bounding box in every
@@ -195,18 +209,12 @@ TEST_CASE("a surface that fails in the default flip state is recovered from anot
     // the corners of an enclosing box: the result has no box corner, and
     // no Steiner point beyond the points' bounding box.
     cbr::test::OffSurface p;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r4.off", p));
-    const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
     Handle h;
-    REQUIRE(cbr_mesh_insert_points(h.m, n, p.xyz.data()) == CBR_OK);
-    REQUIRE_MESSAGE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(),
-                                           nullptr) == CBR_OK,
-                    h.error());
+    const std::int64_t n = recover_fixture("prism-96-fan-caps-h1-r4.off", p, h);
     const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
     CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
     CHECK(steiner_count < 8);
-    std::vector<double> xyz(3 * static_cast<std::size_t>(cbr_mesh_point_count(h.m)));
-    REQUIRE(cbr_mesh_get_points(h.m, xyz.data()) == CBR_OK);
+    const std::vector<double> xyz = points_of(h);
     double lo[3], hi[3];
     bounding_box(p.xyz, lo, hi);
     for (std::size_t i = p.xyz.size(); i < xyz.size(); ++i) {

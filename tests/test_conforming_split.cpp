@@ -1206,6 +1206,19 @@ TEST_CASE("recover_faces: a turned CAD cylinder recovers in another order of the
     for (VertexId v : r.steiner) CHECK_FALSE(on_some_input_triangle(m, *c.faces, v));
 }
 
+namespace {
+
+// recover_faces with `options` on the Delaunay mesh of surface s, built
+// afresh; the result (the mesh is dropped).
+cbr::recover::RecoveryResult recover_fresh(const cbr::test::OffSurface& s, const cbr::recover::RecoveryOptions& options) {
+    Case c;
+    build(c, s.xyz, s.tris);
+    cbr::recover::RecoveryStats stats;
+    return cbr::recover::recover_faces(c.m(), *c.faces, stats, options);
+}
+
+}  // namespace
+
 TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points of any star") {
     // tests/data/recover/prism-96-fan-caps-q1.off: a 96-gon prism, both caps
     // fanned from one rim vertex, turned in space. The points that would
@@ -1216,12 +1229,9 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-q1.off", s));
     {
-        Case c;
-        build(c, s.xyz, s.tris);
         cbr::recover::RecoveryOptions limited;
         limited.unblocking_star_retry = false;
-        cbr::recover::RecoveryStats stats;
-        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, limited);
+        const cbr::recover::RecoveryResult r = recover_fresh(s, limited);
         CHECK_FALSE(r.ok);  // if the first try ever succeeds, this test no longer shows the retry
         CHECK_FALSE(r.unrecovered.empty());
         CHECK(r.why.find("any star") == std::string::npos);
@@ -1253,10 +1263,7 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r4.off", s));
     {
-        Case c;
-        build(c, s.xyz, s.tris);
-        cbr::recover::RecoveryStats stats;
-        const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+        const cbr::recover::RecoveryResult r = recover_fresh(s, {});
         CHECK_FALSE(r.ok);
         CHECK(r.invalid.empty());
         CHECK_FALSE(r.unrecovered.empty());
