@@ -56,9 +56,13 @@ private:
     };
     enum class Search { kCandidates, kClimb };
     void rate_cavity(TetId sliver, double floor, Search search, Choice& best);
-    void rate_shells(TetId sliver, Choice& best);
+    void rate_shells(TetId sliver, double floor, Choice& best);
     void climb(TetId sliver, Point& p, double& q) const;
     std::array<std::size_t, 2> widest_edges(TetId t) const;
+    bool has_movable_vertex(TetId t) const {
+        const VertexId* v = m_.vertices(t);
+        return std::any_of(v, v + 4, [&](VertexId x) { return c_.is_movable(x); });
+    }
     bool in_cavity(TetId t) const { return marks_.has(t, kInCavity); }
     void add_to_cavity(TetId t) {
         cavity_.push_back(t);
@@ -234,9 +238,10 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
 // triangulation). Against a ridge of two nearly coplanar input triangles
 // this is the only small cavity with room below the ridge: the sliver's
 // face neighbours alone leave the point between the ridge and the edge.
-// Only a star without slivers counts here; the rings below keep their
-// own, weaker bar.
-void SliverRemover::rate_shells(TetId sliver, Choice& best) {
+// With `floor` the threshold, only a star without slivers counts here (the
+// rings below keep their own, weaker bar); with 0, any star that beats the
+// shell's worst tetrahedron by kSliverGain.
+void SliverRemover::rate_shells(TetId sliver, double floor, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     const VertexId* v = m_.vertices(sliver);  // nothing here changes the mesh
     for (std::size_t e : widest_edges(sliver)) {
@@ -249,7 +254,7 @@ void SliverRemover::rate_shells(TetId sliver, Choice& best) {
         marks_.new_round(m_.slot_count());
         cavity_.clear();
         for (TetId t : shell_.tets) add_to_cavity(t);
-        rate_cavity(sliver, threshold_, Search::kClimb, best);
+        rate_cavity(sliver, floor, Search::kClimb, best);
     }
 }
 
@@ -268,7 +273,7 @@ std::array<std::size_t, 2> SliverRemover::widest_edges(TetId t) const {
 bool SliverRemover::remove(TetId sliver) {
     const std::int32_t region = c_.region(sliver);
     Choice best;
-    rate_shells(sliver, best);
+    rate_shells(sliver, threshold_, best);
     // Cavities of growing reach: the sliver and its neighbours, then theirs
     // too, and so on (a bigger cavity takes in a candidate that a small
     // one's boundary hides: near a sharp feature the tetrahedra around a
@@ -288,6 +293,15 @@ bool SliverRemover::remove(TetId sliver) {
             }
         }
         rate_cavity(sliver, 0, Search::kCandidates, best);
+    }
+    // No ring has a valid star: a shell's best star after all, if it beats
+    // the shell's worst tetrahedron by kSliverGain, though it keeps a
+    // sliver. Near the surface the rings' candidates (centroids) rarely see
+    // every face of a flat cavity, while the climb in a shell finds a point
+    // that does (cgal-armadillo: a sliver of four surface points at q =
+    // 0.0002, whose shells offer 0.031 and 0.0075, kept 0.40 degrees).
+    if (best.quality == 0 && !has_movable_vertex(sliver)) {
+        rate_shells(sliver, kClimbFrom * threshold_, best);
     }
     // The smallest cavity with a valid star (the least change), or none.
     if (best.quality == 0) return false;
