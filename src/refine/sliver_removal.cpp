@@ -55,7 +55,7 @@ private:
         std::vector<TetId> cavity;
     };
     enum class Search { kCandidates, kClimb };
-    void rate_cavity(TetId sliver, double floor, Search search, Choice& best);
+    void rate_cavity(TetId sliver, double old_min, double floor, Search search, Choice& best);
     void rate_shells(TetId sliver, double floor, Choice& best);
     void climb(TetId sliver, Point& p, double& q) const;
     std::array<std::size_t, 2> widest_edges(TetId t) const;
@@ -169,12 +169,10 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
-// Rates every candidate's star over the current cavity_; a star that
-// beats the cavity's worst tetrahedron by kSliverGain, `floor` and `best`
-// replaces `best`, with its cavity.
-void SliverRemover::rate_cavity(TetId sliver, double floor, Search search, Choice& best) {
-    double old_min = 1;
-    for (TetId t : cavity_) old_min = std::min(old_min, radius_ratio(m_, t));
+// Rates every candidate's star over the current cavity_, whose worst
+// radius ratio is `old_min`; a star that beats it by kSliverGain, and
+// beats `floor` and `best`, replaces `best`, with its cavity.
+void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, Search search, Choice& best) {
     collect_boundary();
     add_candidates(sliver);
     const double bar = std::max(kSliverGain * old_min, floor);
@@ -253,8 +251,12 @@ void SliverRemover::rate_shells(TetId sliver, double floor, Choice& best) {
         if (!inside) continue;
         marks_.new_round(m_.slot_count());
         cavity_.clear();
-        for (TetId t : shell_.tets) add_to_cavity(t);
-        rate_cavity(sliver, floor, Search::kClimb, best);
+        double old_min = 1;
+        for (TetId t : shell_.tets) {
+            add_to_cavity(t);
+            old_min = std::min(old_min, radius_ratio(m_, t));
+        }
+        rate_cavity(sliver, old_min, floor, Search::kClimb, best);
     }
 }
 
@@ -278,21 +280,28 @@ bool SliverRemover::remove(TetId sliver) {
     // too, and so on (a bigger cavity takes in a candidate that a small
     // one's boundary hides: near a sharp feature the tetrahedra around a
     // sliver are thin too); the first reach with a valid star, its best
-    // candidate, unless a shell had one.
+    // candidate, unless a shell had one. Each reach adds the neighbours of
+    // the previous one's new tetrahedra (the older ones' are in already).
     marks_.new_round(m_.slot_count());
     cavity_.clear();
     add_to_cavity(sliver);
+    double old_min = radius_ratio(m_, sliver);
+    std::size_t newest = 0;  // cavity_[newest..] came with the last reach
     for (int reach = 1; reach <= kMaxReach && best.quality == 0; ++reach) {
         const std::size_t outer = cavity_.size();
-        for (std::size_t i = 0; i < outer; ++i) {
+        for (std::size_t i = newest; i < outer; ++i) {
             const TetId t = cavity_[i];
             for (int f = 0; f < 4; ++f) {
                 if (m_.is_constrained(t, f)) continue;
                 const TetId n = facet_tet(m_.neighbor(t, f));
-                if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) add_to_cavity(n);
+                if (c_.in_domain(n) && c_.region(n) == region && !in_cavity(n)) {
+                    add_to_cavity(n);
+                    old_min = std::min(old_min, radius_ratio(m_, n));
+                }
             }
         }
-        rate_cavity(sliver, 0, Search::kCandidates, best);
+        newest = outer;
+        rate_cavity(sliver, old_min, 0, Search::kCandidates, best);
     }
     // No ring has a valid star and nothing can move the sliver's corners
     // (four input points): a shell's best star after all, though it keeps
