@@ -617,13 +617,13 @@ TEST_CASE("refine: ridge slivers on a tessellated sphere go through the shell of
 }
 
 TEST_CASE("refine: a sliver of four input points that no ring removes takes a shell's point") {
-    // common3d-homer kept a tetrahedron of four surface points, none of its
-    // faces an input triangle, at 0.83 deg: nothing can move its corners,
-    // the candidates of the cavities of growing reach see no cavity's
-    // every face, and the best star of the shells of its widest edges
-    // kept a sliver, so it was refused. Taken after all when it lifts the
-    // shell's worst by kSliverGain and to q >= 0.01, it leaves 3.2 deg
-    // (TetGen -pYq1.414: 0.38 deg on this surface).
+    // common3d-homer kept slivers of four surface points (0.83 deg on a
+    // ridge of two input triangles, 1.11 deg with no input face): nothing
+    // can move their corners, the candidates of the cavities of growing
+    // reach see no cavity's every face, and the best star of the shells
+    // of their widest edges kept a sliver, so it was refused. Taken after
+    // all when it lifts the shell's worst by kSliverGain and to q >= 0.01,
+    // it leaves 3.2 deg (TetGen -pYq1.414: 0.38 deg on this surface).
     cbr::test::OffSurface off;
     if (!shared_surface("common3d-homer", off)) return;
     const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.7, false);

@@ -237,8 +237,9 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
 // this is the only small cavity with room below the ridge: the sliver's
 // face neighbours alone leave the point between the ridge and the edge.
 // With `floor` the threshold, only a star without slivers counts here (the
-// rings below keep their own, weaker bar); with 0, any star that beats the
-// shell's worst tetrahedron by kSliverGain.
+// rings below keep their own, weaker bar); with a lower floor (remove's
+// last resort), a star above it that beats the shell's worst tetrahedron
+// by kSliverGain.
 void SliverRemover::rate_shells(TetId sliver, double floor, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     const VertexId* v = m_.vertices(sliver);  // nothing here changes the mesh

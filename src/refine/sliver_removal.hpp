@@ -19,12 +19,15 @@
 // has no sliver left. Else the sliver and its neighbours across
 // non-constraint faces, one ring after another up to six, all in one
 // region (the smallest that admits a valid star, beating the cavity's
-// worst tetrahedron by kSliverGain). The candidates are centroids of the
-// sliver, of the cavity, of each cavity tetrahedron, and points above the
-// sliver's constraint faces, judged exactly before anything changes: every
-// face of the cavity's boundary must see the point strictly (so the star
-// is valid and the point is strictly inside the region, never on the
-// surface).
+// worst tetrahedron by kSliverGain). When no ring has one and the
+// sliver's corners are four input points (nothing can move them), a
+// shell's best star is taken after all if it lifts the shell's worst by
+// kSliverGain and to a tenth of the threshold, though it keeps a sliver.
+// The candidates are centroids of the sliver, of the cavity, of each
+// cavity tetrahedron, and points above the sliver's constraint faces,
+// judged exactly before anything changes: every face of the cavity's
+// boundary must see the point strictly (so the star is valid and the
+// point is strictly inside the region, never on the surface).
 #pragma once
 
 #include <cstddef>
