@@ -1285,6 +1285,28 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     CHECK(recovered_in > 0);
 }
 
+TEST_CASE("recover_faces: a face-interior crossing rounded behind its shell is tried again along the edge") {
+    // tests/data/recover/prism-200-fan-caps-radius30-h1-r20.off: a 200-gon
+    // prism of radius 30 and height 1, caps fanned from one rim vertex,
+    // turned in space (tests/bench/fan_cap_prism.py 200 30 1,
+    // rotate_surface.py seed 20). Where a mesh edge crosses the interior of
+    // triangle 387, the rounded intersection point lands behind a face of
+    // the edge's thin shell, which must go whole: conforming recovery
+    // failed in every order of the faces, flip state and enclosing box.
+    // The same crossing a hair further along the edge goes in
+    // (ConformingRecovery::insert_on_crossing).
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-200-fan-caps-radius30-h1-r20.off", s));
+    Case c;
+    build(c, s.xyz, s.tris);
+    const std::vector<double> input(c.m().coordinates());
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+    REQUIRE_MESSAGE(r.ok, r.why);
+    check_recovered_case(c, r, input);
+    CHECK(stats.conforming_points > 0);
+}
+
 TEST_CASE("recover_faces: a tetrahedron surface pierced near one face (flips, then conforming)") {
     // Same inputs as the ball transformation test above. Before the
     // crossing's tetrahedra were kept whole by the cavity correction,

@@ -383,7 +383,7 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
         if (!mesh::shell(m_, u, w, where, s)) return fail("face cut: no shell");
         // The shell stays whole: the edge must go (a rounded point can
         // land behind a face of a thin shell tetrahedron).
-        const VertexId p = insert(xyz, s.tets, true);
+        const VertexId p = insert_on_crossing(xyz, u, w, A, B, C, s.tets);
         if (p == kGhostVertex) return false;
         points_.add_face_point(p, face);
         if (edge_exists(u, w)) return fail("an intersection point did not cut the edge it was put on");
@@ -400,6 +400,32 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
                 }
     }
     return true;
+}
+
+// Inserts the point where edge uw crosses the interior of face ABC,
+// computed as xyz, into the edge's shell, which it must remove whole.
+// Rounding can put xyz behind a face of a thin shell tetrahedron that
+// cannot give way; the same crossing rounded from w's end, or a hair
+// further along the edge either way, may land on the right side (the
+// turned 200-gon prism of tests/data/recover recovers with the point
+// 1e-12 of the edge further towards w). Each stays a point of the face to
+// within rounding: at most 1e-9 of the edge's length from the crossing.
+VertexId ConformingRecovery::insert_on_crossing(const double* xyz, VertexId u, VertexId w, const double* A,
+                                                const double* B, const double* C, const std::vector<TetId>& shell) {
+    VertexId p = insert(xyz, shell, true);
+    if (p != kGhostVertex) return p;
+    const std::string first_why = why_;
+    const double* pu = m_.point(u);
+    const double* pw = m_.point(w);
+    std::vector<Position> others(1);
+    segment_plane_point(pw, pu, A, B, C, others[0].data());
+    for (double shift : {1e-12, -1e-12, 1e-9, -1e-9})
+        others.push_back({xyz[0] + shift * (pw[0] - pu[0]), xyz[1] + shift * (pw[1] - pu[1]),
+                          xyz[2] + shift * (pw[2] - pu[2])});
+    for (const Position& other : others)
+        if ((p = insert(other.data(), shell, true)) != kGhostVertex) return p;
+    fail(first_why);
+    return kGhostVertex;
 }
 
 // §5.2 wants each face a disk of sub-faces. A tetrahedron whose four

@@ -52,6 +52,8 @@ private:
     mesh::VertexId insert_joined(const Position& xyz, const std::vector<mesh::TetId>& cavity, mesh::VertexId q);
     void undo_last_insertion(mesh::VertexId p);
     bool recover_interior(std::size_t face);
+    mesh::VertexId insert_on_crossing(const double* xyz, mesh::VertexId u, mesh::VertexId w, const double* A,
+                                      const double* B, const double* C, const std::vector<mesh::TetId>& shell);
     // Every flat tetrahedron of the face; `removed`: how many there were.
     bool remove_flat_tets(std::size_t face, std::size_t& removed);
     mesh::TetId find_flat_tet(std::size_t face);
