@@ -161,9 +161,9 @@ run_local_outputs() {
     fi
 
     # --json for failed runs too: status, exit code, error; no mesh.
-    expect 3 "could not recover triangle" recover "$tmp/pierced-62.off" -o "$tmp/pierced-62.mesh" --json "$tmp/pierced-62.json" &&
-        no_file "$tmp/pierced-62.mesh"
-    json_has "$tmp/pierced-62.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
+    expect 3 "could not recover triangle" recover "$tmp/pierced-27.off" -o "$tmp/pierced-27.mesh" --json "$tmp/pierced-27.json" &&
+        no_file "$tmp/pierced-27.mesh"
+    json_has "$tmp/pierced-27.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
         'd["output"] is None and "could not recover" in d["error"]' \
         'd["table_one"]["missing_faces"] > 0 and d["table_two"] is None and d["mesh"] is None'
     expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh" --json "$tmp/missing.json"
@@ -239,7 +239,7 @@ run_local_outputs() {
             fail "cube-mesh.mesh read back: $(cat "$tmp/info")"
     fi
     # Exit 3 when recovery fails (the CSG cross of tests/data/io fails today).
-    expect 3 "could not recover triangle" mesh "$tmp/pierced-62.off" -o "$tmp/pierced-mesh.mesh" --json "$tmp/pierced-mesh.json" &&
+    expect 3 "could not recover triangle" mesh "$tmp/pierced-27.off" -o "$tmp/pierced-mesh.mesh" --json "$tmp/pierced-mesh.json" &&
         no_file "$tmp/pierced-mesh.mesh"
     json_has "$tmp/pierced-mesh.json" 'd["command"] == "mesh" and d["status"] == "recovery_failed" and d["refine"] is None'
     expect 1 "--size needs a finite length > 0, not '-1'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size -1
@@ -398,8 +398,8 @@ run_local() {
     # A tetrahedron surface pierced near one face (the generator of
     # test_conforming_split.cpp) still defeats conforming recovery: a clean
     # failure.
-    cp "$io_data/pierced-62.off" "$tmp/pierced-62.off"
-    expect 3 "could not recover triangle" recover "$tmp/pierced-62.off" -o "$tmp/pierced-62.mesh" && no_file "$tmp/pierced-62.mesh"
+    cp "$io_data/pierced-27.off" "$tmp/pierced-27.off"
+    expect 3 "could not recover triangle" recover "$tmp/pierced-27.off" -o "$tmp/pierced-27.mesh" && no_file "$tmp/pierced-27.mesh"
 
     run_local_outputs "${2:-}"
 }
