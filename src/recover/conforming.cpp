@@ -29,6 +29,10 @@ namespace {
 // insertion removes one crossing, so this only stops a bug from running
 // forever.
 constexpr std::size_t kMaxInsertionsPerConstraint = 100000;
+// Where the rounded point on a face-interior crossing is refused, it is
+// tried again this far along the crossed edge (in edge lengths; either
+// way): still a point of the face to within rounding.
+constexpr double kCrossingShifts[] = {1e-12, -1e-12, 1e-9, -1e-9};
 
 using geom::cross;
 using geom::dot;
@@ -406,10 +410,9 @@ bool ConformingRecovery::recover_interior(std::size_t face) {
 // computed as xyz, into the edge's shell, which it must remove whole.
 // Rounding can put xyz behind a face of a thin shell tetrahedron that
 // cannot give way; the same crossing rounded from w's end, or a hair
-// further along the edge either way, may land on the right side (the
-// turned 200-gon prism of tests/data/recover recovers with the point
-// 1e-12 of the edge further towards w). Each stays a point of the face to
-// within rounding: at most 1e-9 of the edge's length from the crossing.
+// further along the edge either way (kCrossingShifts), may land on the
+// right side (the turned 200-gon prism of tests/data/recover recovers with
+// the point 1e-12 of the edge further towards w).
 VertexId ConformingRecovery::insert_on_crossing(const double* xyz, VertexId u, VertexId w, const double* A,
                                                 const double* B, const double* C, const std::vector<TetId>& shell) {
     VertexId p = insert(xyz, shell, true);
@@ -417,13 +420,14 @@ VertexId ConformingRecovery::insert_on_crossing(const double* xyz, VertexId u, V
     const std::string first_why = why_;
     const double* pu = m_.point(u);
     const double* pw = m_.point(w);
+    const Position first = {xyz[0], xyz[1], xyz[2]};
     std::vector<Position> others(1);
     segment_plane_point(pw, pu, A, B, C, others[0].data());
-    for (double shift : {1e-12, -1e-12, 1e-9, -1e-9})
+    for (double shift : kCrossingShifts)
         others.push_back({xyz[0] + shift * (pw[0] - pu[0]), xyz[1] + shift * (pw[1] - pu[1]),
                           xyz[2] + shift * (pw[2] - pu[2])});
-    for (const Position& other : others)
-        if ((p = insert(other.data(), shell, true)) != kGhostVertex) return p;
+    for (const Position& other : others)  // the same position fails the same way: skipped
+        if (other != first && (p = insert(other.data(), shell, true)) != kGhostVertex) return p;
     fail(first_why);
     return kGhostVertex;
 }
