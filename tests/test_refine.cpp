@@ -40,6 +40,7 @@
 #include "recover/constraint_faces.hpp"
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
+#include "refine/deepest_point.hpp"
 #include "refine/quality_stats.hpp"
 #include "refine/refine.hpp"
 #include "refine/refine_context.hpp"
@@ -358,6 +359,37 @@ void recover_surface(const Surface& s, Recovered& r) {
     r.region = cbr::recover::classify_regions(r.d.mesh_for_update(), faces).of_tet;
 }
 
+TEST_CASE("refine: the deepest point of an intersection of half-spaces") {
+    using cbr::refine::HalfSpace;
+    using cbr::refine::Point;
+    // The box [0, 4] x [0, 2] x [0, 1] (normal . x >= offset), started
+    // from a corner: the largest ball inside has radius 1/2, centred on
+    // the mid-height plane, anywhere along x within [0.5, 3.5] and y 1.
+    std::vector<HalfSpace> box = {{{1, 0, 0}, 0},  {{-1, 0, 0}, -4}, {{0, 2, 0}, 0},
+                                  {{0, -1, 0}, -2}, {{0, 0, 3}, 0},  {{0, 0, -1}, -1}};
+    Point deepest{};
+    REQUIRE(cbr::refine::deepest_point(box, {0, 0, 0}, deepest));
+    CHECK(deepest[2] == doctest::Approx(0.5));
+    CHECK(deepest[1] >= 0.5 - 1e-9);
+    CHECK(deepest[1] <= 1.5 + 1e-9);
+    CHECK(deepest[0] >= 0.5 - 1e-9);
+    CHECK(deepest[0] <= 3.5 + 1e-9);
+    // A thin wedge between two planes through the x axis, 1e-6 apart at
+    // y = 1, capped at y = 1 and x = +-1: the deepest point is in the
+    // wedge, not at the start on its edge.
+    std::vector<HalfSpace> wedge = {{{0, 1e-6, 1}, 0}, {{0, 1e-6, -1}, 0}, {{0, -1, 0}, -1},
+                                    {{1, 0, 0}, -1},     {{-1, 0, 0}, -1}};
+    REQUIRE(cbr::refine::deepest_point(wedge, {0.3, 0.5, 0}, deepest));
+    CHECK(deepest[1] > 0.5);
+    CHECK(deepest[1] < 1);
+    CHECK(std::abs(deepest[2]) < 1e-6 * deepest[1]);
+    // Unbounded: no optimum.
+    std::vector<HalfSpace> open = {{{1, 0, 0}, 0}, {{0, 1, 0}, 0}};
+    const Point before = deepest;
+    CHECK_FALSE(cbr::refine::deepest_point(open, {1, 1, 1}, deepest));
+    CHECK(deepest == before);
+}
+
 TEST_CASE("refine: optimisation passes revisit only what changed") {
     Recovered r;
     recover_surface(nine_spheres(), r);
@@ -628,6 +660,21 @@ TEST_CASE("refine: a sliver of four input points that no ring removes takes a sh
     if (!shared_surface("common3d-homer", off)) return;
     const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.7, false);
     CHECK(out.quality.dihedral_min_deg > 2);
+}
+
+TEST_CASE("refine: a flat tetrahedron on two needle input triangles takes the deepest point of a shell") {
+    // wildmeshing-supershape kept a tetrahedron of four surface points on
+    // two nearly coplanar input triangles (q 5e-12, 1e-5 deg). The kernel
+    // of the shell of its inner edge is thin: no fixed candidate has a
+    // valid star. From the deepest point of the kernel the climb reaches
+    // q 8e-4, under every floor (the triangles are needles), but far
+    // above the sliver, and that is taken as a last resort after the
+    // passes (rescue_flat_slivers): 1.0 deg left. TetGen -pYq1.414: 0.12
+    // deg on this surface.
+    cbr::test::OffSurface off;
+    if (!shared_surface("wildmeshing-supershape", off)) return;
+    const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.6, false);
+    CHECK(out.quality.dihedral_min_deg > 0.5);
 }
 
 TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {

@@ -59,6 +59,11 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         stats.sliver_points += slivers;
         if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
+    if (options.slivers) {
+        const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold);
+        stats.field_points += rescued;
+        stats.sliver_points += rescued;
+    }
     for (mesh::TetId t = 0; t < m.slot_count(); ++t)
         if (c.in_domain(t) && !c.tet_within_size(t)) ++stats.unresolved_size;
     std::vector<double> sizes(m.vertex_count());

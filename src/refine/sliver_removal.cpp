@@ -11,6 +11,7 @@
 #include "mesh/errors.hpp"
 #include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
+#include "refine/deepest_point.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -38,6 +39,13 @@ constexpr int kClimbHalvings = 5;
 // 209,293 shells starting under a tenth of the bar), and thin walls have
 // hundreds of thousands of such shells.
 constexpr double kClimbFrom = 0.1;
+// rescue_flat_slivers, for a flat sliver of four input points (radius
+// ratio under kRescueBelow): a shell's star that beats the shell's worst
+// by kRescueGain and reaches kRescueFloor, though it stays far below the
+// threshold.
+constexpr double kRescueBelow = 1e-6;
+constexpr double kRescueGain = 100.0;
+constexpr double kRescueFloor = 1e-4;
 
 struct BoundaryFace {
     std::array<const double*, 3> corners;  // p is on the cavity's side when orient3d(corners, p) > 0
@@ -47,6 +55,7 @@ class SliverRemover {
 public:
     SliverRemover(RefineContext& c, double threshold) : c_(c), m_(c.m), threshold_(threshold) {}
     bool remove(TetId sliver);
+    bool rescue(TetId sliver);
 
 private:
     struct Choice {
@@ -55,8 +64,18 @@ private:
         std::vector<TetId> cavity;
     };
     enum class Search { kCandidates, kClimb };
-    void rate_cavity(TetId sliver, double old_min, double floor, Search search, Choice& best);
-    void rate_shells(TetId sliver, double floor, Choice& best);
+    // How rate_shells judges a shell's stars: the bar is the larger of
+    // `floor` and `gain` times the shell's worst radius ratio; `deepest`:
+    // the deepest point of the shell's kernel is a candidate too.
+    struct ShellRating {
+        double floor;
+        double gain = kSliverGain;
+        bool deepest = false;
+    };
+    bool insert(TetId sliver, Choice& best);
+    void rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search, Choice& best);
+    void rate_shells(TetId sliver, const ShellRating& rating, Choice& best);
+    bool add_deepest_candidate(VertexId a, VertexId b);
     void climb(TetId sliver, Point& p, double& q) const;
     std::array<std::size_t, 2> widest_edges(TetId t) const;
     bool has_movable_vertex(TetId t) const {
@@ -169,13 +188,13 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
-// Rates every candidate's star over the current cavity_, whose worst
-// radius ratio is `old_min`; a star that beats it by kSliverGain, and
-// beats `floor` and `best`, replaces `best`, with its cavity.
-void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, Search search, Choice& best) {
-    collect_boundary();
-    add_candidates(sliver);
-    const double bar = std::max(kSliverGain * old_min, floor);
+// Rates every candidate's star over the current cavity_ (its boundary and
+// candidates collected), whose worst radius ratio is `old_min`; a star
+// that beats it by `gain`, and beats `floor` and `best`, replaces `best`,
+// with its cavity.
+void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
+                                Choice& best) {
+    const double bar = std::max(gain * old_min, floor);
     // The best candidate with a valid star, then climbed (climb).
     double q_start = 0;
     Point start = {0, 0, 0};
@@ -240,7 +259,7 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
 // rings below keep their own, weaker bar); with a lower floor (remove's
 // last resort), a star above it that beats the shell's worst tetrahedron
 // by kSliverGain.
-void SliverRemover::rate_shells(TetId sliver, double floor, Choice& best) {
+void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     const VertexId* v = m_.vertices(sliver);  // nothing here changes the mesh
     for (std::size_t e : widest_edges(sliver)) {
@@ -257,8 +276,41 @@ void SliverRemover::rate_shells(TetId sliver, double floor, Choice& best) {
             add_to_cavity(t);
             old_min = std::min(old_min, radius_ratio(m_, t));
         }
-        rate_cavity(sliver, old_min, floor, Search::kClimb, best);
+        collect_boundary();
+        add_candidates(sliver);
+        if (rating.deepest && !add_deepest_candidate(a, b)) continue;
+        rate_cavity(sliver, old_min, rating.floor, rating.gain, Search::kClimb, best);
     }
+}
+
+// The deepest point of the kernel of the current cavity_, the shell of
+// edge ab, as a candidate. The kernel (the points every boundary face
+// sees) holds the middle of ab, but when the shell is flat it is a thin
+// sliver of space, and the fixed candidates and the climb from them miss
+// it (wildmeshing-supershape: a flat tetrahedron on two input triangles,
+// q 5e-12; no fixed candidate of the shell of its interior edge has a
+// valid star, while the deepest point, climbed, gives q 8e-4, dihedral
+// angles from 1e-5 degrees to 0.9). False when the program fails.
+bool SliverRemover::add_deepest_candidate(VertexId a, VertexId b) {
+    std::vector<HalfSpace> spaces;
+    spaces.reserve(boundary_.size());
+    for (const BoundaryFace& f : boundary_) {
+        const double* p = f.corners[0];
+        const double* q = f.corners[1];
+        const double* r = f.corners[2];
+        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+        // orient3d(p, q, r, x) > 0 on the cavity's side: (q - p) x (r - p) points there.
+        const Point n = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        spaces.push_back({n, n[0] * p[0] + n[1] * p[1] + n[2] * p[2]});
+    }
+    const double* pa = m_.point(a);
+    const double* pb = m_.point(b);
+    const Point middle = {(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2};
+    Point deepest{};
+    if (!deepest_point(spaces, middle, deepest)) return false;
+    candidates_.push_back(deepest);
+    return true;
 }
 
 // The two edges of t (kTetEdges indices) with the largest dihedral
@@ -276,7 +328,7 @@ std::array<std::size_t, 2> SliverRemover::widest_edges(TetId t) const {
 bool SliverRemover::remove(TetId sliver) {
     const std::int32_t region = c_.region(sliver);
     Choice best;
-    rate_shells(sliver, threshold_, best);
+    rate_shells(sliver, {threshold_}, best);
     // Cavities of growing reach: the sliver and its neighbours, then theirs
     // too, and so on (a bigger cavity takes in a candidate that a small
     // one's boundary hides: near a sharp feature the tetrahedra around a
@@ -302,7 +354,9 @@ bool SliverRemover::remove(TetId sliver) {
             }
         }
         newest = outer;
-        rate_cavity(sliver, old_min, 0, Search::kCandidates, best);
+        collect_boundary();
+        add_candidates(sliver);
+        rate_cavity(sliver, old_min, 0, kSliverGain, Search::kCandidates, best);
     }
     // No ring has a valid star and nothing can move the sliver's corners
     // (four input points): a shell's best star after all, though it keeps
@@ -315,7 +369,23 @@ bool SliverRemover::remove(TetId sliver) {
     // the slivers at nearly the same quality (feeder body: 17k more
     // tetrahedra); with movable corners smoothing and relocation have
     // their turn instead (octocat's average q fell 0.7635 -> 0.7494).
-    if (best.quality == 0 && !has_movable_vertex(sliver)) rate_shells(sliver, kClimbFrom * threshold_, best);
+    if (best.quality == 0 && !has_movable_vertex(sliver)) rate_shells(sliver, {kClimbFrom * threshold_}, best);
+    return insert(sliver, best);
+}
+
+// The last resort (rescue_flat_slivers): the shells again, from the deepest
+// point of their kernel too, taken if the star beats the shell's worst by
+// kRescueGain and reaches kRescueFloor.
+bool SliverRemover::rescue(TetId sliver) {
+    if (has_movable_vertex(sliver) || radius_ratio(m_, sliver) >= kRescueBelow) return false;
+    Choice best;
+    rate_shells(sliver, {kRescueFloor, kRescueGain, true}, best);
+    return insert(sliver, best);
+}
+
+// Inserts best's point into best's cavity (the sliver's region).
+bool SliverRemover::insert(TetId sliver, Choice& best) {
+    const std::int32_t region = c_.region(sliver);
     // The smallest cavity with a valid star (the least change), or none.
     if (best.quality == 0) return false;
     cavity_.swap(best.cavity);
@@ -345,6 +415,15 @@ std::size_t remove_slivers(RefineContext& c, double threshold) {
     for (TetId t = 0; t < slots; ++t) {
         if (c.in_domain(t) && c.changed_near(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
     }
+    return inserted;
+}
+
+std::size_t rescue_flat_slivers(RefineContext& c, double threshold) {
+    SliverRemover remover(c, threshold);
+    std::size_t inserted = 0;
+    const std::size_t slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t)
+        if (c.in_domain(t)) inserted += remover.rescue(t);
     return inserted;
 }
 
