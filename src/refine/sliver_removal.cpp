@@ -255,10 +255,11 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
 // triangulation). Against a ridge of two nearly coplanar input triangles
 // this is the only small cavity with room below the ridge: the sliver's
 // face neighbours alone leave the point between the ridge and the edge.
-// With `floor` the threshold, only a star without slivers counts here (the
-// rings below keep their own, weaker bar); with a lower floor (remove's
-// last resort), a star above it that beats the shell's worst tetrahedron
-// by kSliverGain.
+// With `rating.floor` the threshold, only a star without slivers counts
+// here (the rings below keep their own, weaker bar); with a lower floor
+// (remove's fallback, and rescue with its own gain and the kernel's
+// deepest point), a star above it that beats the shell's worst
+// tetrahedron by `rating.gain`.
 void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     const VertexId* v = m_.vertices(sliver);  // nothing here changes the mesh

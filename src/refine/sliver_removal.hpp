@@ -22,7 +22,9 @@
 // worst tetrahedron by kSliverGain). When no ring has one and the
 // sliver's corners are four input points (nothing can move them), a
 // shell's best star is taken after all if it lifts the shell's worst by
-// kSliverGain and to a tenth of the threshold, though it keeps a sliver.
+// kSliverGain and to a tenth of the threshold, though it keeps a sliver
+// (and once after the passes, for the flattest of them, a star from the
+// deepest point of a shell's kernel: rescue_flat_slivers).
 // The candidates are centroids of the sliver, of the cavity, of each
 // cavity tetrahedron, and points above the sliver's constraint faces,
 // judged exactly before anything changes: every face of the cavity's
