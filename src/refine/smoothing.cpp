@@ -42,6 +42,7 @@ private:
     mesh::TetMesh& m_;
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
+    std::vector<double> qualities_;  // of ball_ at the vertex's position, in ball_'s order
 };
 
 // The ball's minimum quality when it is above `floor`; otherwise some value
@@ -151,13 +152,15 @@ bool Smoother::smooth(VertexId v, TetId start) {
     // pointing toward v (the face's vertices in kFaceVertices order).
     std::size_t worst_at = 0;
     double worst_q = 2;
+    qualities_.clear();
     for (std::size_t j = 0; j < ball_.size(); ++j) {
-        const double q = radius_ratio(m_, ball_[j]);
-        if (q < worst_q) worst_q = q, worst_at = j;
+        qualities_.push_back(radius_ratio(m_, ball_[j]));
+        if (qualities_[j] < worst_q) worst_q = qualities_[j], worst_at = j;
     }
     // The worst tetrahedron first: the likeliest to stay below the best
     // quality so far, which ends min_quality early.
     std::swap(ball_[0], ball_[worst_at]);
+    std::swap(qualities_[0], qualities_[worst_at]);
     const TetId worst = ball_[0];
     if (worst_q < kLiftBelow) {
         const int i = mesh::vertex_index(m_, worst, v);
@@ -185,7 +188,11 @@ bool Smoother::smooth(VertexId v, TetId start) {
         // mean quality, as long as its worst stays above kMeanFloor (or
         // above the old worst, when that was lower).
         const double floor = std::min(old_min, kMeanFloor);
-        double best_sum = sum_quality(floor) * kMeanGain;
+        // The ball as it is (no quality below its worst, so none below
+        // floor): the sum of the qualities already rated, in ball order.
+        double best_sum = 0;
+        for (double q : qualities_) best_sum += q;
+        best_sum *= kMeanGain;
         for (const Point& p : candidates) {
             m_.set_point(v, p.data());
             if (!ball_valid(v)) continue;
