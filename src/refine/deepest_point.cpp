@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "geom/vec3.hpp"
+
 namespace cbr::refine {
 namespace {
 
@@ -35,8 +37,7 @@ bool deepest_point(const std::vector<HalfSpace>& spaces, const Point& inside, Po
     std::vector<std::size_t> basis(rows);
     for (std::size_t i = 0; i < rows; ++i) {
         const HalfSpace& h = spaces[i];
-        const double length = std::sqrt(h.normal[0] * h.normal[0] + h.normal[1] * h.normal[1] +
-                                        h.normal[2] * h.normal[2]);
+        const double length = std::sqrt(geom::dot(h.normal.data(), h.normal.data()));
         if (!(length > 0)) return false;
         double slack = -h.offset;
         for (std::size_t k = 0; k < 3; ++k) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geom/predicates.hpp"
+#include "geom/vec3.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/slot_marks.hpp"
@@ -73,9 +74,10 @@ private:
         bool deepest = false;
     };
     bool insert(TetId sliver, Choice& best);
-    void rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search, Choice& best);
+    void rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search, Choice& best,
+                     const Point* kernel_from = nullptr);
     void rate_shells(TetId sliver, const ShellRating& rating, Choice& best);
-    bool add_deepest_candidate(VertexId a, VertexId b);
+    bool add_deepest_candidate(const Point& start);
     void climb(TetId sliver, Point& p, double& q) const;
     std::array<std::size_t, 2> widest_edges(TetId t) const;
     bool has_movable_vertex(TetId t) const {
@@ -188,12 +190,16 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
-// Rates every candidate's star over the current cavity_ (its boundary and
-// candidates collected), whose worst radius ratio is `old_min`; a star
-// that beats it by `gain`, and beats `floor` and `best`, replaces `best`,
-// with its cavity.
+// Rates every candidate's star over the current cavity_, whose worst
+// radius ratio is `old_min`; a star that beats it by `gain`, and beats
+// `floor` and `best`, replaces `best`, with its cavity. With `kernel_from`
+// (a point every boundary face sees), the deepest point of the kernel is a
+// candidate too, and nothing is rated when it cannot be found.
 void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
-                                Choice& best) {
+                                Choice& best, const Point* kernel_from) {
+    collect_boundary();
+    add_candidates(sliver);
+    if (kernel_from && !add_deepest_candidate(*kernel_from)) return;
     const double bar = std::max(gain * old_min, floor);
     // The best candidate with a valid star, then climbed (climb).
     double q_start = 0;
@@ -277,39 +283,38 @@ void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice&
             add_to_cavity(t);
             old_min = std::min(old_min, radius_ratio(m_, t));
         }
-        collect_boundary();
-        add_candidates(sliver);
-        if (rating.deepest && !add_deepest_candidate(a, b)) continue;
-        rate_cavity(sliver, old_min, rating.floor, rating.gain, Search::kClimb, best);
+        // The middle of ab sees every face of its shell.
+        const double* pa = m_.point(a);
+        const double* pb = m_.point(b);
+        const Point middle = {(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2};
+        rate_cavity(sliver, old_min, rating.floor, rating.gain, Search::kClimb, best,
+                    rating.deepest ? &middle : nullptr);
     }
 }
 
-// The deepest point of the kernel of the current cavity_, the shell of
-// edge ab, as a candidate. The kernel (the points every boundary face
-// sees) holds the middle of ab, but when the shell is flat it is a thin
+// The deepest point of the kernel of the current cavity_ (the points every
+// boundary face sees), found from `start`, a point of the kernel, as a
+// candidate. The kernel of a shell holds the middle of its edge, but when
+// the shell is flat it is a thin
 // sliver of space, and the fixed candidates and the climb from them miss
 // it (wildmeshing-supershape: a flat tetrahedron on two input triangles,
 // q 5e-12; no fixed candidate of the shell of its interior edge has a
 // valid star, while the deepest point, climbed, gives q 8e-4, dihedral
 // angles from 1e-5 degrees to 0.9). False when the program fails.
-bool SliverRemover::add_deepest_candidate(VertexId a, VertexId b) {
-    std::vector<HalfSpace> spaces;
-    spaces.reserve(boundary_.size());
-    for (const BoundaryFace& f : boundary_) {
-        const double* p = f.corners[0];
-        const double* q = f.corners[1];
-        const double* r = f.corners[2];
+bool SliverRemover::add_deepest_candidate(const Point& start) {
+    std::vector<HalfSpace> spaces(boundary_.size());
+    for (std::size_t i = 0; i < boundary_.size(); ++i) {
+        const double* p = boundary_[i].corners[0];
+        const double* q = boundary_[i].corners[1];
+        const double* r = boundary_[i].corners[2];
         const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
         // orient3d(p, q, r, x) > 0 on the cavity's side: (q - p) x (r - p) points there.
-        const Point n = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        spaces.push_back({n, n[0] * p[0] + n[1] * p[1] + n[2] * p[2]});
+        geom::cross(u, w, spaces[i].normal.data());
+        spaces[i].offset = geom::dot(spaces[i].normal.data(), p);
     }
-    const double* pa = m_.point(a);
-    const double* pb = m_.point(b);
-    const Point middle = {(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2};
     Point deepest{};
-    if (!deepest_point(spaces, middle, deepest)) return false;
+    if (!deepest_point(spaces, start, deepest)) return false;
     candidates_.push_back(deepest);
     return true;
 }
@@ -355,8 +360,6 @@ bool SliverRemover::remove(TetId sliver) {
             }
         }
         newest = outer;
-        collect_boundary();
-        add_candidates(sliver);
         rate_cavity(sliver, old_min, 0, kSliverGain, Search::kCandidates, best);
     }
     // No ring has a valid star and nothing can move the sliver's corners
