@@ -66,10 +66,14 @@ private:
         double gap = std::numeric_limits<double>::infinity();
         double star_quality = 2;  // when asked
         double nearest2 = std::numeric_limits<double>::infinity();  // squared distance to the nearest cavity vertex
+        // The cavity (probe_cavity_) is the one the insertion would grow:
+        // no ghost met, and no constraint face between two of its members
+        // (where the insertion's growth refuses a tetrahedron).
+        bool reusable = true;
     };
     Probe probe(TetId start, const double* p, bool want_star = false);
     bool try_centroid(TetId t);
-    bool insert(const Point& p, TetId start);
+    bool insert(const Point& p, TetId start, const Probe& probed);
     bool try_circumcentre(TetId t);
     bool try_edge_midpoint(TetId t);
     std::size_t point_cap() const;
@@ -125,6 +129,7 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
         for (int f = 0; f < 4; ++f) {
             if (m_.is_constrained(t, f)) continue;
             const TetId n = facet_tet(m_.neighbor(t, f));
+            if (m_.is_ghost(n)) out.reusable = false;
             if (m_.is_ghost(n) || marks.has(n, kTested)) continue;
             marks.set(n, kTested);
             const VertexId* w = m_.vertices(n);
@@ -138,7 +143,9 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
         const VertexId* v = m_.vertices(t);
         for (int f = 0; f < 4; ++f) {
             const bool constrained = m_.is_constrained(t, f);
-            if (!constrained && marks.has(facet_tet(m_.neighbor(t, f)), kInCavity)) continue;  // interior face
+            const bool inner = marks.has(facet_tet(m_.neighbor(t, f)), kInCavity);
+            if (constrained && inner) out.reusable = false;
+            if (!constrained && inner) continue;  // interior face
             const int* k = kFaceVertices[f];
             const double* a = m_.point(v[k[0]]);
             const double* b = m_.point(v[k[1]]);
@@ -180,14 +187,19 @@ bool Refiner::try_centroid(TetId t) {
     if (loc.where != Located::kInside) return false;
     const Probe pr = probe(loc.tet, g.data(), true);
     if (pr.encroaches || pr.star_quality <= kSliverGain * old_q) return false;
-    return insert(g, loc.tet);
+    return insert(g, loc.tet, pr);
 }
 
-bool Refiner::insert(const Point& p, TetId start) {
+// Inserts p (found in `start`), whose cavity `probed` describes: when the
+// probe's cavity is the one the insertion would grow, it is handed over
+// instead of grown again (same set of tetrahedra, so the same star).
+bool Refiner::insert(const Point& p, TetId start, const Probe& probed) {
     const std::int32_t region = c_.region(start);
     const double h = c_.size.for_new_point(m_, start, p.data());
     const VertexId id = m_.add_points(p.data(), 1);
-    const recover::ProtectedInsertResult& res = inserter_.insert(m_, id, start);
+    const recover::ProtectedInsertResult& res = probed.reusable
+                                                    ? inserter_.insert_in_cavity(m_, id, start, probe_cavity_)
+                                                    : inserter_.insert(m_, id, start);
     if (!res.ok) {
         m_.truncate_vertices(id);
         return false;
@@ -217,7 +229,7 @@ bool Refiner::try_circumcentre(TetId t) {
     // apart, at a local size of 0.05).
     const double r2 = squared_distance(cc.data(), m_.point(v[0]));
     if (pr.nearest2 < kMinCircumcentreGap * kMinCircumcentreGap * r2) return false;
-    return insert(cc, loc.tet);
+    return insert(cc, loc.tet, pr);
 }
 
 bool Refiner::try_edge_midpoint(TetId t) {
@@ -240,8 +252,9 @@ bool Refiner::try_edge_midpoint(TetId t) {
     // Too close to the surface: splitting again and again toward a face
     // that cannot be split would only make flat elements.
     const double length = std::sqrt(squared_distance(a, b));
-    if (probe(loc.tet, mid.data()).gap < kMinSurfaceGap * length) return false;
-    return insert(mid, loc.tet);
+    const Probe pr = probe(loc.tet, mid.data());
+    if (pr.gap < kMinSurfaceGap * length) return false;
+    return insert(mid, loc.tet, pr);
 }
 
 // A guard against runaway refinement: 10x the number of points an ideal
