@@ -33,6 +33,9 @@ constexpr std::size_t kMaxInsertionsPerConstraint = 100000;
 // tried again this far along the crossed edge (in edge lengths; either
 // way): still a point of the face to within rounding.
 constexpr double kCrossingShifts[] = {1e-12, -1e-12, 1e-9, -1e-9};
+// A segment passes by an edge of a face it crosses when their nearest
+// points are this close, in edge lengths (other_crossing_points).
+constexpr double kPassBy = 1e-3;
 
 using geom::cross;
 using geom::dot;
@@ -94,9 +97,9 @@ bool middle_in_tet(const mesh::TetMesh& m, TetId t, const double* p, const doubl
     return true;
 }
 
-// The point of segment pq nearest to line xy (the segments cross, so it is
-// their common point up to rounding).
-void segment_line_point(const double* p, const double* q, const double* x, const double* y, double out[3]) {
+// The parameters of the nearest points of lines pq and xy: p + s (q - p)
+// and x + t (y - x); false when the lines are parallel.
+bool nearest_parameters(const double* p, const double* q, const double* x, const double* y, double& s, double& t) {
     double d1[3], d2[3], r[3];
     for (int k = 0; k < 3; ++k) {
         d1[k] = q[k] - p[k];
@@ -105,9 +108,32 @@ void segment_line_point(const double* p, const double* q, const double* x, const
     }
     const double a = dot(d1, d1), e = dot(d2, d2), b = dot(d1, d2), c = dot(d1, r), f = dot(d2, r);
     const double denom = a * e - b * b;
-    double s = denom > 0 ? (b * f - c * e) / denom : 0.5;
-    if (!(s > 0.0) || s >= 1.0) s = 0.5;
+    if (!(denom > 0)) return false;
+    s = (b * f - c * e) / denom;
+    t = (a * f - b * c) / denom;
+    return true;
+}
+
+// The point of segment pq nearest to line xy (the segments cross, so it is
+// their common point up to rounding).
+void segment_line_point(const double* p, const double* q, const double* x, const double* y, double out[3]) {
+    double s = 0.5, t = 0;
+    if (!nearest_parameters(p, q, x, y, s, t) || !(s > 0.0) || s >= 1.0) s = 0.5;
     geom::segment_point_off_ends(p, q, s, out);
+}
+
+// Segment pq passes by segment xy: their nearest points are interior to
+// both and closer than kPassBy times xy's length.
+bool passes_by(const double* p, const double* q, const double* x, const double* y) {
+    double s = 0, t = 0;
+    if (!nearest_parameters(p, q, x, y, s, t) || !(s > 0 && s < 1 && t > 0 && t < 1)) return false;
+    double gap2 = 0, length2 = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = (p[k] + s * (q[k] - p[k])) - (x[k] + t * (y[k] - x[k]));
+        gap2 += d * d;
+        length2 += (y[k] - x[k]) * (y[k] - x[k]);
+    }
+    return gap2 < kPassBy * kPassBy * length2;
 }
 
 // Where segment pq crosses segment xy (exactly coplanar, crossing in their
@@ -244,8 +270,8 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
         VertexId p = insert_joined(xyz, cavity, q);
         if (p == kGhostVertex) {
             const std::string first_why = why_;
-            for (const Position& other : other_crossing_points(c, q, b, cavity))
-                if ((p = insert_joined(other, cavity, q)) != kGhostVertex) break;
+            for (const Candidate& other : other_crossing_points(c, q, b, cavity))
+                if ((p = insert_joined(other.xyz, other.cavity, q)) != kGhostVertex) break;
             if (p == kGhostVertex) return fail(first_why);
         }
         points_.add_edge_point(p, a, b);
@@ -297,23 +323,39 @@ bool ConformingRecovery::crossing_point(const Crossing& c, VertexId q, VertexId 
 // cuts q off. Other points of the segment (the middle of its part in a
 // tetrahedron of the crossing, checked exactly to lie in it) or of the
 // crossed edge may fare better: on the turned cylinder, the middle of the
-// segment in the tetrahedron beyond the crossed face does.
-std::vector<ConformingRecovery::Position> ConformingRecovery::other_crossing_points(const Crossing& c, VertexId q,
-                                                                                    VertexId b,
-                                                                                    const std::vector<TetId>& cavity) {
+// segment in the tetrahedron beyond the crossed face does. Last, for a
+// crossed face: where the segment passes by one of the face's edges, the
+// point of the segment nearest to that edge, with the edge's shell as the
+// cavity. In a flat layer (a fanned cap over the Delaunay triangulation
+// of its rim, turned) the segment meets the faces of flat tetrahedra at
+// grazing angles: the crossing point of such a face is ill-conditioned,
+// while the in-plane edge the segment passes is what really blocks it.
+std::vector<ConformingRecovery::Candidate> ConformingRecovery::other_crossing_points(
+    const Crossing& c, VertexId q, VertexId b, const std::vector<TetId>& cavity) {
     const double* pq = m_.point(q);
     const double* pb = m_.point(b);
-    std::vector<Position> points;
+    std::vector<Candidate> out;
     Position xyz{};
     if (c.kind == Crossing::kEdge) {
         segment_crossing_on_edge(pq, pb, m_.point(c.x), m_.point(c.y), xyz.data());
-        points.push_back(xyz);
+        out.push_back({xyz, cavity});
     }
     std::vector<TetId> tets = cavity;
     if (c.kind == Crossing::kFace) std::reverse(tets.begin(), tets.end());  // the tetrahedron beyond the face first
     for (TetId t : tets)
-        if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) points.push_back(xyz);
-    return points;
+        if (!m_.is_ghost(t) && middle_in_tet(m_, t, pq, pb, xyz.data())) out.push_back({xyz, cavity});
+    if (c.kind == Crossing::kFace) {
+        const VertexId* v = m_.vertices(c.tet);
+        for (int k = 0; k < 3; ++k) {
+            const VertexId x = v[kFaceVertices[c.face][k]], y = v[kFaceVertices[c.face][(k + 1) % 3]];
+            if (!passes_by(pq, pb, m_.point(x), m_.point(y))) continue;
+            mesh::Shell shell;
+            if (!mesh::shell(m_, x, y, c.tet, shell)) continue;
+            segment_line_point(pq, pb, m_.point(x), m_.point(y), xyz.data());
+            out.push_back({xyz, shell.tets});
+        }
+    }
+    return out;
 }
 
 // Inserts a point at xyz into `cavity` and keeps it when it ends up joined
@@ -480,7 +522,10 @@ bool ConformingRecovery::is_flat(TetId t, std::size_t face) const {
 // it that is no chain link, such that its two faces without ab, (s, r, a)
 // and (s, r, b), lie on either side of sr within the face (they stay as
 // sub-faces, side by side), and whose shell holds no sub-face of another
-// input triangle (nothing else of the surface changes).
+// input triangle (nothing else of the surface changes) unless ab is a
+// shortcut of a chain. (A turned CAD part: three rounded points of the
+// chain between two nearly coplanar triangles, nearly collinear, and an
+// edge between the outer two that both triangles' flat tetrahedra use.)
 bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
     const Triangle& tri = points_.faces().triangle(face);
     // A point off the plane of the face: the side of line sr within the
@@ -507,10 +552,16 @@ bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
             if (side_a == 0 || side_a != -side_b) continue;
             mesh::Shell shell;
             if (!mesh::shell(m_, a, b, t, shell)) continue;
+            // ab along one input edge, not a link of its chain, is a
+            // shortcut past a point of the chain: no sub-face of any
+            // triangle at that edge may use it (it would overlap the
+            // links), so the faces at it are no loss.
+            const bool shortcut = points_.on_one_edge(a, b, b);
             bool other_subface = false;
-            for (VertexId x : shell.ring)
-                other_subface = other_subface ||
-                                (x != kGhostVertex && !points_.belongs_to(x, face) && points_.is_subface(a, b, x));
+            if (!shortcut)
+                for (VertexId x : shell.ring)
+                    other_subface = other_subface ||
+                                    (x != kGhostVertex && !points_.belongs_to(x, face) && points_.is_subface(a, b, x));
             if (other_subface) continue;
             std::vector<TetId> created;
             if (mesh::remove_edge(m_, t, a, b, is_link, &created) != mesh::FlipResult::kDone) continue;

@@ -16,7 +16,9 @@
 // Rounded points on the edges of a thin face can make a flat tetrahedron
 // whose four vertices are all points of that face; both its upper and its
 // lower face then count as sub-faces, and the face is no disk. Such
-// tetrahedra are removed by edge removal before the disk check.
+// tetrahedra are removed by edge removal before the disk check; an edge
+// that skips points of a chain (a shortcut: along the chain in exact
+// geometry) may go even where it borders another triangle's "sub-face".
 #pragma once
 
 #include <array>
@@ -47,7 +49,12 @@ private:
     bool recover_edge(mesh::VertexId a, mesh::VertexId b);
     bool crossing_point(const Crossing& c, mesh::VertexId q, mesh::VertexId b, Position& xyz,
                         std::vector<mesh::TetId>& cavity);
-    std::vector<Position> other_crossing_points(const Crossing& c, mesh::VertexId q, mesh::VertexId b,
+    // A point to try and its initial cavity.
+    struct Candidate {
+        Position xyz;
+        std::vector<mesh::TetId> cavity;
+    };
+    std::vector<Candidate> other_crossing_points(const Crossing& c, mesh::VertexId q, mesh::VertexId b,
                                                 const std::vector<mesh::TetId>& cavity);
     mesh::VertexId insert_joined(const Position& xyz, const std::vector<mesh::TetId>& cavity, mesh::VertexId q);
     void undo_last_insertion(mesh::VertexId p);
