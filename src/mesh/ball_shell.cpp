@@ -11,23 +11,35 @@ namespace {
 bool live(const TetMesh& m, TetId t) { return t < m.slot_count() && !m.is_free(t); }
 
 // 1 when the permutation (p[0], p[1], p[2], p[3]) of 0..3 is odd.
-int parity(const int p[4]) {
+constexpr int parity(const int p[4]) {
     int inversions = 0;
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) inversions += p[i] > p[j];
     return inversions & 1;
 }
 
-// Positions x, y of the two vertices of t other than u and v, ordered so
-// that (u, v, vertex x, vertex y) is an even permutation of t.
-void ring_positions(int iu, int iv, int& x, int& y) {
-    int rest[2], k = 0;
+// The position x of one of the two vertices of t other than u and v
+// (at positions iu != iv): the one for which (u, v, vertex x, the other)
+// is an even permutation of t. shell() crosses the face opposite it.
+constexpr int ring_position(int iu, int iv) {
+    int rest[2] = {0, 0}, k = 0;
     for (int i = 0; i < 4; ++i)
         if (i != iu && i != iv) rest[k++] = i;
     const int p[4] = {iu, iv, rest[0], rest[1]};
-    x = rest[parity(p)];
-    y = rest[1 - parity(p)];
+    return rest[parity(p)];
 }
+
+// ring_position for every (iu, iv), looked up: shell() takes one step per
+// tetrahedron around an edge, millions of times in flip recovery.
+struct RingTable {
+    int x[4][4] = {};
+    constexpr RingTable() {
+        for (int iu = 0; iu < 4; ++iu)
+            for (int iv = 0; iv < 4; ++iv)
+                if (iu != iv) x[iu][iv] = ring_position(iu, iv);
+    }
+};
+constexpr RingTable kRing;
 
 }  // namespace
 
@@ -107,14 +119,17 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
     // ring[i+1]); a valid mesh comes back to `start`, a broken one is cut
     // off after slot_count() steps.
     for (std::size_t steps = 0; steps <= m.slot_count(); ++steps) {
-        int x, y;
-        ring_positions(iu, iv, x, y);
+        const int x = kRing.x[iu][iv];
         out.tets.push_back(t);
         out.ring.push_back(m.vertex(t, x));
         t = facet_tet(m.neighbor(t, x));
         if (t == start) return true;
-        iu = vertex_index(m, t, u);
-        iv = vertex_index(m, t, v);
+        iu = iv = -1;
+        const VertexId* w = m.vertices(t);
+        for (int i = 0; i < 4; ++i) {
+            if (w[i] == u) iu = i;
+            else if (w[i] == v) iv = i;
+        }
         if (iu < 0 || iv < 0) break;
     }
     out.tets.clear();
