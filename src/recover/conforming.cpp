@@ -564,7 +564,7 @@ bool ConformingRecovery::remove_flat_tet(std::size_t face, TetId t) {
                                     (x != kGhostVertex && !points_.belongs_to(x, face) && points_.is_subface(a, b, x));
             if (other_subface) continue;
             std::vector<TetId> created;
-            if (mesh::remove_edge(m_, t, a, b, is_link, &created) != mesh::FlipResult::kDone) continue;
+            if (mesh::remove_edge(m_, a, b, shell, is_link, &created) != mesh::FlipResult::kDone) continue;
             note_created(created);
             return true;
         }

@@ -129,8 +129,11 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
         for (int f = 0; f < 4; ++f) {
             if (m_.is_constrained(t, f)) continue;
             const TetId n = facet_tet(m_.neighbor(t, f));
-            if (m_.is_ghost(n)) out.reusable = false;
-            if (m_.is_ghost(n) || marks.has(n, kTested)) continue;
+            if (m_.is_ghost(n)) {
+                out.reusable = false;  // the insertion's growth tests ghosts
+                continue;
+            }
+            if (marks.has(n, kTested)) continue;
             marks.set(n, kTested);
             const VertexId* w = m_.vertices(n);
             if (geom::insphere_sos(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), p) > 0) {
