@@ -376,6 +376,45 @@ TEST_CASE("orient3d: integer and dyadic points (the exact stage in doubles, and 
     }
 }
 
+TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, and with GMP") {
+    // The exact stage's shortcut checks each product by its error term:
+    // Dekker's split everywhere, one fma where the processor has one (the
+    // run-time choice would leave the other untested on any one machine).
+    // Integers of up to 2^12 make every step exact; up to 2^26 the minors
+    // are but their products by the third column need not be, and both
+    // checks must say so together.
+    Rng rng(14);
+    const bool fma = cbr::geom::detail::fma_available();
+    int exact = 0, refused = 0;
+    for (const int bits : {4, 12, 20, 26}) {
+        const double top = std::ldexp(1.0, bits);
+        for (int n = 0; n < 400; ++n) {
+            Point r[3];
+            for (Point& p : r)
+                for (double& x : p) x = std::round(rng.uniform(-top, top));
+            if (n % 2 == 0)  // coplanar with the origin: a zero determinant
+                for (int k = 0; k < 3; ++k) r[2][k] = r[0][k] - 2 * r[1][k];
+            const double scale = std::ldexp(1.0, rng.integer(-40, 40));
+            for (Point& p : r)
+                for (double& x : p) x *= scale;
+            double by_split = 0, by_fma = 0;
+            const bool split_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_split, false);
+            const bool fma_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_fma, fma);
+            CHECK(split_ok == fma_ok);
+            if (!split_ok) {
+                ++refused;
+                continue;
+            }
+            ++exact;
+            CHECK(by_split == by_fma);
+            const int sign = (by_split > 0) - (by_split < 0);
+            CHECK(sign == ref_orient3d(Point{0, 0, 0}, r[0], r[1], r[2]));
+        }
+    }
+    CHECK(exact > 400);  // both kinds were met
+    CHECK(refused > 100);
+}
+
 TEST_CASE("orient3d: random points") {
     Rng rng(1);
     for (int n = 0; n < 3000; ++n) {

@@ -93,31 +93,50 @@ Expansion<4> xy_minor(const double* p, const double* q) {
 // checked by its error term (an explicit fma or two_sum); a product near the
 // underflow range is not trusted (its error could round to 0).
 
-bool exact_product(double a, double b, double& p) {
+template <bool kFma>
+[[gnu::always_inline]] inline bool exact_product(double a, double b, double& p) {
     double err;
-    xp::two_product(a, b, p, err);
+    if constexpr (kFma) {
+        p = a * b;
+        err = __builtin_fma(a, b, -p);
+    } else {
+        xp::two_product(a, b, p, err);
+    }
     return err == 0.0 && (p == 0.0 || std::fabs(p) > 0x1p-900);
 }
 
-bool exact_sum(double a, double b, double& s) {
+[[gnu::always_inline]] inline bool exact_sum(double a, double b, double& s) {
     double err;
     xp::two_sum(a, b, s, err);
     return err == 0.0;
 }
 
 // m(p, q) = px qy - qx py, when exact.
-bool exact_xy_minor(const double* p, const double* q, double& m) {
+template <bool kFma>
+[[gnu::always_inline]] inline bool exact_xy_minor(const double* p, const double* q, double& m) {
     double l, r;
-    return exact_product(p[0], q[1], l) && exact_product(q[0], p[1], r) && exact_sum(l, -r, m);
+    return exact_product<kFma>(p[0], q[1], l) && exact_product<kFma>(q[0], p[1], r) && exact_sum(l, -r, m);
 }
 
 // det3_from_minors in doubles, when every step is exact.
-bool det3_in_doubles(const double* u, const double* v, const double* w, double& det) {
+template <bool kFma>
+[[gnu::always_inline]] inline bool det3_steps(const double* u, const double* v, const double* w, double& det) {
     double m_vw, m_uw, m_uv, a, b, c, ab;
-    return exact_xy_minor(v, w, m_vw) && exact_xy_minor(u, w, m_uw) && exact_xy_minor(u, v, m_uv) &&
-           exact_product(u[2], m_vw, a) && exact_product(v[2], m_uw, b) && exact_product(w[2], m_uv, c) &&
-           exact_sum(a, -b, ab) && exact_sum(ab, c, det);
+    return exact_xy_minor<kFma>(v, w, m_vw) && exact_xy_minor<kFma>(u, w, m_uw) &&
+           exact_xy_minor<kFma>(u, v, m_uv) && exact_product<kFma>(u[2], m_vw, a) &&
+           exact_product<kFma>(v[2], m_uw, b) && exact_product<kFma>(w[2], m_uv, c) && exact_sum(a, -b, ab) &&
+           exact_sum(ab, c, det);
 }
+
+// A portable x86-64 build may not assume a fused multiply-add, but most
+// processors have one: the fma steps are compiled for it apart, and taken
+// when the processor says so (fma_available).
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__)) && !defined(FP_FAST_FMA)
+#define CBR_FMA_AT_RUN_TIME 1
+[[gnu::target("fma")]] bool det3_steps_fma(const double* u, const double* v, const double* w, double& det) {
+    return det3_steps<true>(u, v, w, det);
+}
+#endif
 
 // Raw 2D orientation det[1, p; 1, q; 1, r] = m(q,r) - m(p,r) + m(p,q).
 Expansion<12> orient2d_from_minors(const Expansion<4>& m_qr, const Expansion<4>& m_pr,
@@ -394,6 +413,28 @@ int incircle_perturbed(const double* const* pts, int s, Projection pr) {
 
 namespace detail {
 
+bool fma_available() {
+#if defined(CBR_FMA_AT_RUN_TIME)
+    static const bool available = __builtin_cpu_supports("fma");
+    return available;
+#elif defined(FP_FAST_FMA)
+    return true;
+#else
+    return false;
+#endif
+}
+
+bool det3_in_doubles(const double* u, const double* v, const double* w, double& det, bool fma) {
+#if defined(CBR_FMA_AT_RUN_TIME)
+    if (fma) return det3_steps_fma(u, v, w, det);
+#elif defined(FP_FAST_FMA)
+    if (fma) return det3_steps<true>(u, v, w, det);
+#else
+    (void)fma;
+#endif
+    return det3_steps<false>(u, v, w, det);
+}
+
 int orient3d_exact_raw(const double* a, const double* b, const double* c, const double* d) {
     return orient3d_raw_expansion(a, b, c, d).sign();
 }
@@ -413,7 +454,7 @@ int orient3d_exact(const double* a, const double* b, const double* c, const doub
     double u[3], v[3], w[3];
     if (exact_differences(b, a, u) & exact_differences(c, a, v) & exact_differences(d, a, w)) {
         double det;
-        if (det3_in_doubles(u, v, w, det)) return (det > 0) - (det < 0);
+        if (det3_in_doubles(u, v, w, det, fma_available())) return (det > 0) - (det < 0);
         const Expansion<4> m_uv = xy_minor(u, v), m_uw = xy_minor(u, w), m_vw = xy_minor(v, w);
         return det3_from_minors(u[2], v[2], w[2], m_vw, m_uw, m_uv).sign();
     }

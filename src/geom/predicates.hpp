@@ -106,6 +106,18 @@ int orient3d_exact_raw(const double* a, const double* b, const double* c, const 
 int insphere_exact_raw(const double* a, const double* b, const double* c, const double* d,
                        const double* e);
 
+// det[u; v; w] computed in doubles, when every product and sum of its
+// minor expansion is exact (false otherwise): the exact stage's shortcut
+// for coordinates with few significant bits (CAD grids, upsampled flat
+// faces). Each product is checked by its error term: with `fma` one fused
+// multiply-add (only when fma_available()), else Dekker's split, about ten
+// times the instructions; both give the same answer. On the upsampled box,
+// whose flat faces send millions of ring triangles here, the fma cut the
+// recovery's instructions by 4.6%.
+bool det3_in_doubles(const double* u, const double* v, const double* w, double& det, bool fma);
+// Whether the processor has a fused multiply-add (asked once).
+bool fma_available();
+
 // Filter error bounds. u = 2^-53 is the unit roundoff: for every operation
 // whose exact result x is non-zero, fl(x) = x (1 + delta), |delta| <= u (no
 // underflow or overflow in the supported range, see predicates.cpp).
