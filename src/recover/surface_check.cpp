@@ -2,7 +2,10 @@
 #include "recover/surface_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "geom/intersect.hpp"
@@ -100,6 +103,7 @@ TriState check_triangle(const Surface& s, std::size_t t, Collector& out) {
 // ---------------------------------------------------------------------------
 void find_duplicates(const Surface& s, const std::vector<TriState>& state, Collector& out) {
     std::vector<std::pair<Ids, std::size_t>> keys;  // sorted ids, triangle
+    keys.reserve(s.triangle_count);
     for (std::size_t t = 0; t < s.triangle_count; ++t) {
         if (state[t] == TriState::Invalid) continue;
         Ids v = s.ids(t);
@@ -165,10 +169,14 @@ void report_edges(const Surface& s, const std::vector<TriState>& state, Collecto
 }
 
 // ---------------------------------------------------------------------------
-// Bounding-box tree (median split on box centres). Boxes are min/max of
-// input coordinates, so they are exact and closed: triangles that touch
-// have touching boxes, and the candidate pairs are a superset of the
-// meeting pairs.
+// Bounding-box tree. Boxes are min/max of input coordinates, so they are
+// exact and closed: triangles that touch have touching boxes, and the
+// candidate pairs are a superset of the meeting pairs. The items are put in
+// the order of their box centres along a Morton (Z-order) curve by one
+// sort, and each node splits its range in halves: nearby boxes share
+// subtrees, as with median splits on the longest axis, for a fraction of
+// the building (igea's 270k triangles: a median split per node moved every
+// 56-byte item once per level, a fifth of the check).
 // ---------------------------------------------------------------------------
 struct Box {
     std::array<double, 3> lo;
@@ -201,11 +209,16 @@ Box triangle_box(const Surface& s, std::size_t t) {
 
 class BoxTree {
 public:
-    // Indexes boxes[i] for each i in `ids`.
-    BoxTree(const std::vector<Box>& boxes, const std::vector<std::size_t>& ids) {
-        items_.reserve(ids.size());
-        for (const std::size_t i : ids) items_.push_back({boxes[i], i});
-        if (!items_.empty()) build(0, items_.size());
+    // Indexes box_of(i) for each i in `ids` (computed twice rather than
+    // kept in a third array as large as the tree's).
+    template <class BoxOf>
+    BoxTree(const std::vector<std::size_t>& ids, BoxOf box_of) {
+        if (ids.empty()) return;
+        const std::vector<std::pair<std::uint64_t, std::size_t>> keyed = morton_order(ids, box_of);
+        items_.reserve(keyed.size());
+        for (const auto& [code, i] : keyed) items_.push_back({box_of(i), i});
+        nodes_.reserve(items_.size());  // leaves hold at least 2 items: fewer than n nodes
+        build(0, items_.size());
     }
 
     // Calls visit(i, j) once for every pair of indexed boxes that overlap.
@@ -266,30 +279,68 @@ private:
         if (items_[i].box.overlaps(items_[j].box)) visit(items_[i].id, items_[j].id);
     }
 
-    // Median split of items [begin, end) along the longest axis of their box.
+    // Spreads the low 21 bits of x to every third bit.
+    static std::uint64_t spread(std::uint64_t x) {
+        x &= 0x1fffff;
+        x = (x | x << 32) & 0x1f00000000ffffull;
+        x = (x | x << 16) & 0x1f0000ff0000ffull;
+        x = (x | x << 8) & 0x100f00f00f00f00full;
+        x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+        x = (x | x << 2) & 0x1249249249249249ull;
+        return x;
+    }
+
+    // `ids` with the Morton codes of their box centres (21 bits per axis
+    // over the centres' bounding box), sorted by code, then id: a function
+    // of the input alone.
+    template <class BoxOf>
+    static std::vector<std::pair<std::uint64_t, std::size_t>> morton_order(const std::vector<std::size_t>& ids,
+                                                                          BoxOf box_of) {
+        std::vector<std::array<double, 3>> centres;
+        centres.reserve(ids.size());
+        std::array<double, 3> lo, hi;
+        lo.fill(std::numeric_limits<double>::infinity());
+        hi.fill(-std::numeric_limits<double>::infinity());
+        for (const std::size_t i : ids) {
+            const Box b = box_of(i);
+            std::array<double, 3>& c = centres.emplace_back();
+            for (int k = 0; k < 3; ++k) {
+                c[k] = 0.5 * b.lo[k] + 0.5 * b.hi[k];
+                lo[k] = std::min(lo[k], c[k]);
+                hi[k] = std::max(hi[k], c[k]);
+            }
+        }
+        std::array<double, 3> scale;
+        for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? 2097151.0 / (hi[k] - lo[k]) : 0.0;
+        std::vector<std::pair<std::uint64_t, std::size_t>> keyed;
+        keyed.reserve(ids.size());
+        for (std::size_t n = 0; n < ids.size(); ++n) {
+            std::uint64_t code = 0;
+            for (int k = 0; k < 3; ++k) {
+                const double q = std::min(std::max((centres[n][k] - lo[k]) * scale[k], 0.0), 2097151.0);
+                code |= spread(static_cast<std::uint64_t>(q)) << k;
+            }
+            keyed.emplace_back(code, ids[n]);
+        }
+        std::sort(keyed.begin(), keyed.end());
+        return keyed;
+    }
+
+    // Node of items [begin, end): a leaf, or its two halves; its box is
+    // that of its items (a leaf's) or of its children.
     std::size_t build(std::size_t begin, std::size_t end) {
         const std::size_t self = nodes_.size();
-        Box box = items_[begin].box;
-        for (std::size_t i = begin + 1; i < end; ++i) box.expand(items_[i].box);
-        nodes_.push_back({box, begin, end, 0});
-        if (end - begin <= kLeafSize) return self;
-        int axis = 0;
-        for (int k = 1; k < 3; ++k)
-            if (box.hi[k] - box.lo[k] > box.hi[axis] - box.lo[axis]) axis = k;
-        // Order by box centre (twice it: lo + hi), ties by id, so that the
-        // tree is a function of the input alone.
-        const auto before = [axis](const Item& a, const Item& b) {
-            const double ca = a.box.lo[axis] + a.box.hi[axis];
-            const double cb = b.box.lo[axis] + b.box.hi[axis];
-            return ca != cb ? ca < cb : a.id < b.id;
-        };
+        nodes_.push_back({items_[begin].box, begin, end, 0});
+        if (end - begin <= kLeafSize) {
+            for (std::size_t i = begin + 1; i < end; ++i) nodes_[self].box.expand(items_[i].box);
+            return self;
+        }
         const std::size_t mid = begin + (end - begin) / 2;
-        std::nth_element(items_.begin() + static_cast<std::ptrdiff_t>(begin),
-                         items_.begin() + static_cast<std::ptrdiff_t>(mid),
-                         items_.begin() + static_cast<std::ptrdiff_t>(end), before);
         build(begin, mid);
         const std::size_t right = build(mid, end);
         nodes_[self].right = right;
+        nodes_[self].box = nodes_[self + 1].box;
+        nodes_[self].box.expand(nodes_[right].box);
         return self;
     }
 
@@ -366,14 +417,11 @@ private:
 };
 
 void find_intersections(const Surface& s, const std::vector<TriState>& state, Collector& out) {
-    std::vector<Box> boxes(s.triangle_count);
     std::vector<std::size_t> usable;
+    usable.reserve(s.triangle_count);
     for (std::size_t t = 0; t < s.triangle_count; ++t)
-        if (state[t] == TriState::Usable) {
-            boxes[t] = triangle_box(s, t);
-            usable.push_back(t);
-        }
-    const BoxTree tree(boxes, usable);
+        if (state[t] == TriState::Usable) usable.push_back(t);
+    const BoxTree tree(usable, [&s](std::size_t t) { return triangle_box(s, t); });
     SmallestPairs found(out.cap());
     tree.for_each_overlapping_pair([&](std::size_t t, std::size_t u) {
         Defect d;
