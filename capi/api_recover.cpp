@@ -52,7 +52,9 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
 // with its statistics in `stats`; a failure is the first attempt's, its
 // reason naming the other flip states tried, and the mesh is whatever the
 // last attempt left. Only where the deepest round runs with its default
-// budget (options.retries, deep_flips, no deepest_flip_budget).
+// budget (options.retries, deep_flips, no deepest_flip_budget). The other
+// flip states try the plain unblocking points only
+// (kRetryUnblockingTries).
 cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
                                                     cbr::recover::RecoveryStats& stats) {
     const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
@@ -65,6 +67,7 @@ cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::r
         mesh.delaunay.rebuild();
         cbr::recover::RecoveryOptions other = options;
         other.deepest_flip_budget = budget;
+        other.unblocking_tries = std::min(other.unblocking_tries, cbr::recover::kRetryUnblockingTries);
         cbr::recover::RecoveryStats other_stats;
         cbr::recover::RecoveryResult again =
             cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, other_stats, other);

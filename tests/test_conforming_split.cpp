@@ -1181,7 +1181,7 @@ TEST_CASE("recover_faces: a turned CAD cylinder recovers in another order of the
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/cylinder-turned-r3.off", s));
     cbr::recover::RecoveryOptions orders_only;
-    orders_only.unblocking_star_retry = false;
+    orders_only.unblocking_tries = 1;
     {
         Case c;
         build(c, s.xyz, s.tris);
@@ -1231,7 +1231,7 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-q1.off", s));
     {
         cbr::recover::RecoveryOptions limited;
-        limited.unblocking_star_retry = false;
+        limited.unblocking_tries = 1;
         const cbr::recover::RecoveryResult r = recover_fresh(s, limited);
         CHECK_FALSE(r.ok);  // if the first try ever succeeds, this test no longer shows the retry
         CHECK_FALSE(r.unrecovered.empty());
@@ -1248,6 +1248,36 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
     // was needed, and the Steiner points it made went again (§6).
     CHECK(stats.steiner_generated > 0);
     CHECK(stats.conforming_points == 0);
+}
+
+TEST_CASE("recover_faces: a turned fan-cap prism recovers with denser unblocking points nearer the faces") {
+    // tests/data/recover/prism-96-fan-caps-h1-r32.off: a 96-gon prism of
+    // radius 10 and height 1, both caps fanned from one rim vertex, turned
+    // in space (fan_cap_prism.py 96 10 1, rotate_surface.py seed 32). With
+    // the default unblocking points, and again with points of any star,
+    // conforming recovery fails in every order of the faces (and it failed
+    // in every retry of cbr_mesh_recover_faces before the denser points
+    // came). recovery.cpp's third try puts a point every 4 crossed
+    // tetrahedra instead of 8, down to 0.05 of the face's shortest edge
+    // from it instead of 0.1 (kDenseUnblocking).
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r32.off", s));
+    {
+        cbr::recover::RecoveryOptions default_points;
+        default_points.unblocking_tries = 2;  // the default points, then of any star
+        const cbr::recover::RecoveryResult r = recover_fresh(s, default_points);
+        CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the denser points
+        CHECK_FALSE(r.unrecovered.empty());
+        CHECK(r.why.find("the sub-faces of a face do not form a disk") != std::string::npos);
+    }
+    Case c;
+    build(c, s.xyz, s.tris);
+    const std::vector<double> input(c.m().coordinates());
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+    check_recovered_case(c, r, input);
+    CHECK(stats.steiner_generated > 0);
 }
 
 TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {

@@ -1,6 +1,7 @@
 #include "recover/recovery.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cstdint>
 #include <string>
 
@@ -107,16 +108,17 @@ bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, cons
 }
 
 // Where the first flips left faces: interior points that unblock the flips
-// (stars of at most `max_star` tetrahedra), the flips again, then
-// conforming recovery and splitting of what is still missing, in other
-// orders of the faces after a failure. `missing`: in, the faces the first
-// flips left; out, those still missing after the second flips. False
-// (result.why set) when conforming recovery or splitting failed;
-// `star_refused`: whether the star limit turned an unblocking point away.
+// (placed as `unblocking` says), the flips again, then conforming recovery
+// and splitting of what is still missing, in other orders of the faces
+// after a failure. `missing`: in, the faces the first flips left; out,
+// those still missing after the second flips. False (result.why set) when
+// conforming recovery or splitting failed; `star_refused`: whether the
+// star limit turned an unblocking point away.
 bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
-                        std::size_t max_star, int face_orders, RecoveryStats& stats, RecoveryResult& result,
-                        bool& star_refused) {
-    const UnblockingResult unblocking = insert_unblocking_points(m, faces, missing, result.steiner, max_star);
+                        const UnblockingOptions& unblocking_options, int face_orders, RecoveryStats& stats,
+                        RecoveryResult& result, bool& star_refused) {
+    const UnblockingResult unblocking =
+        insert_unblocking_points(m, faces, missing, result.steiner, unblocking_options);
     star_refused = unblocking.refused_for_star > 0;
     stats.steiner_generated += unblocking.kept;
     if (unblocking.kept > 0) missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, FlipRounds::kWithoutDeepest);
@@ -131,33 +133,67 @@ bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vec
     return missing.empty() || recover_in_face_orders(m, faces, missing, face_orders, stats, result);
 }
 
-// unblock_then_split, and when it fails where the star limit turned
-// unblocking points away: once more from the mesh the flips left, with no
-// limit. On a nearly flat fanned cap (CAD cylinders turned in space) the
-// points that unblock the flips see most of the cap, and their stars are
-// large; with them, the flips recover faces whose conforming recovery
-// fails on rounded points (turned prisms with fanned caps: 18 of 24
-// failures recover so, most with no conforming point at all). The limit
-// stays for the first try: a point of a large star costs §6 suppression
-// time (the shared cylinder: 0.1 s -> 0.4 s without it), and a surface
-// that recovers in the first try gets the same mesh as before. A failure
-// is reported as the first try's (its reason, statistics and faces).
+// The unblocking points tried, in order, each from the mesh the flips
+// left, until one leads to every face (recover_after_flips). A try marked
+// `after_star_refusal` runs only when the try before it had points turned
+// away by the star limit: without the limit it would place the same
+// points.
+struct UnblockingTry {
+    UnblockingOptions options;
+    bool after_star_refusal;
+};
+constexpr UnblockingTry kUnblockingTries[] = {
+    // The default: stars of at most kUnblockingMaxStar tetrahedra.
+    {UnblockingOptions{}, false},
+    // No star limit. On a nearly flat fanned cap (CAD cylinders turned in
+    // space) the points that unblock the flips see most of the cap, and
+    // their stars are large; with them, the flips recover faces whose
+    // conforming recovery fails on rounded points (turned prisms with
+    // fanned caps: 18 of 24 failures recover so, most with no conforming
+    // point at all). The limit stays for the first try: a point of a large
+    // star costs §6 suppression time (the shared cylinder: 0.1 s -> 0.4 s
+    // without it), and a surface that recovers in the first try gets the
+    // same mesh as before.
+    {UnblockingOptions{kUnblockingAnyStar, 8, 0.1}, true},
+    // Denser points, nearer the faces (kDenseUnblocking), then the same
+    // without the star limit.
+    {kDenseUnblocking, false},
+    {UnblockingOptions{kUnblockingAnyStar, kDenseUnblocking.tets_per_point, kDenseUnblocking.clearance}, true},
+};
+
+static_assert(std::size(kUnblockingTries) == static_cast<std::size_t>(RecoveryOptions{}.unblocking_tries),
+              "by default every unblocking try may run");
+
+// unblock_then_split with each of the first options.unblocking_tries of
+// kUnblockingTries in turn, from the mesh the flips left, until one
+// succeeds. A failure is reported as the first try's (its reason,
+// statistics and faces), with the number of other tries added.
 bool recover_after_flips(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
                          const RecoveryOptions& options, RecoveryStats& stats, RecoveryResult& result) {
     const Checkpoint flipped(m, stats, result);
     const std::vector<std::size_t> flips_left = missing;
+    FailureReport first_failure;
+    std::vector<std::size_t> first_missing;
     bool star_refused = false;
-    if (unblock_then_split(m, faces, missing, kUnblockingMaxStar, options.face_orders, stats, result, star_refused))
-        return true;
-    if (!star_refused || !options.unblocking_star_retry) return false;
-    const FailureReport first_failure{stats, result.why};
-    const std::vector<std::size_t> first_missing = missing;
-    flipped.restore(m, stats, result);
-    missing = flips_left;
-    if (unblock_then_split(m, faces, missing, kUnblockingAnyStar, options.face_orders, stats, result, star_refused))
-        return true;
+    int tried = 0;
+    const std::size_t tries = std::min<std::size_t>(std::size(kUnblockingTries),
+                                                    static_cast<std::size_t>(std::max(options.unblocking_tries, 1)));
+    for (std::size_t k = 0; k < tries; ++k) {
+        const UnblockingTry& attempt = kUnblockingTries[k];
+        if (attempt.after_star_refusal && !star_refused) continue;
+        if (tried > 0) {
+            flipped.restore(m, stats, result);
+            missing = flips_left;
+        }
+        if (unblock_then_split(m, faces, missing, attempt.options, options.face_orders, stats, result, star_refused))
+            return true;
+        if (tried++ == 0) {
+            first_failure = {stats, result.why};
+            first_missing = missing;
+        }
+    }
     first_failure.restore(stats, result);
-    result.why += " (and again with unblocking points of any star)";
+    if (tried > 1) result.why += " (and with " + std::to_string(tried - 1) + " other placements of unblocking points)";
     missing = first_missing;
     return false;
 }

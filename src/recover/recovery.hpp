@@ -3,9 +3,9 @@
 // interior Steiner points off the surface and the flips again on those
 // faces (unblocking_points.hpp); per remaining face, conforming recovery
 // then edge- and face-added-point splitting (§5.2-5.4), tried again in
-// other orders of the faces after a failure, and once more with unblocking
-// points of any star when their limit turned some away; Steiner suppression
-// and repositioning (§6). A face that a step cannot recover is reported,
+// other orders of the faces after a failure, and again with other
+// unblocking points (of any star, denser); Steiner suppression and
+// repositioning (§6). A face that a step cannot recover is reported,
 // never hidden.
 #pragma once
 
@@ -54,17 +54,24 @@ struct RecoveryOptions {
     // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
     // Not in the C API: tests set 1 to reach the first order's failures.
     int face_orders = 6;
-    // After a failure where the unblocking points' star limit turned points
-    // away: once more from the mesh the flips left, with no limit
-    // (recovery.cpp, recover_after_flips). Not in the C API: tests switch
-    // it off to reach the first try's failures.
-    bool unblocking_star_retry = true;
+    // After a failure: again from the mesh the flips left with other
+    // unblocking points (recovery.cpp, kUnblockingTries: without the star
+    // limit when it turned points away, then denser points nearer the
+    // faces); at most this many of those tries in all (the first is the
+    // default). Not in the C API: tests lower it to reach the failures of
+    // the first tries.
+    int unblocking_tries = 4;
 };
 
 // The budgets of the deepest flip round (edge removals a face) that
 // cbr_mesh_recover_faces tries after a failure with the default one, in
 // this order (see RecoveryOptions::retries).
 inline constexpr int kRetryFlipBudgets[] = {10000, 30000};
+// The unblocking tries of those other flip states: the first two, without
+// the denser points (they had their chance in the default flip state; on
+// the turned feeder body, which fails in every attempt, they took the time
+// to fail from 88 to 167 s when every attempt had them).
+inline constexpr int kRetryUnblockingTries = 2;
 
 // Recovers every triangle of `faces` as a face of m, marking them as
 // constraint faces. Steiner points are appended to m's vertices; ids below

@@ -24,15 +24,14 @@ using mesh::VertexId;
 
 // Tetrahedra searched along one edge.
 constexpr std::size_t kMaxSearchedTets = std::size_t{1} << 16;
-// Points tried per missing edge: one per this many tetrahedra the edge
-// meets, at most kMaxPointsPerEdge, spread evenly along it.
-constexpr std::size_t kTetsPerPoint = 8;
+// Points tried per missing edge: one per options.tets_per_point
+// tetrahedra the edge meets, at most kMaxPointsPerEdge, spread evenly
+// along it. Offsets from the edge: from a quarter of its length, halved
+// down to options.clearance times the face's shortest edge, which is also
+// the least distance kept from every missing triangle (a point nearer the
+// surface makes the thin tetrahedra that later steps must then split
+// around).
 constexpr std::size_t kMaxPointsPerEdge = 8;
-// Offsets from the edge: from a quarter of its length, halved down to this
-// fraction of the face's shortest edge, which is also the least distance
-// kept from every missing triangle (a point nearer the surface makes the
-// thin tetrahedra that later steps must then split around).
-constexpr double kClearance = 0.1;
 // Steps of the walk to a point.
 constexpr int kMaxWalk = 10000;
 
@@ -74,8 +73,8 @@ void normal_and_scale(const mesh::TetMesh& m, const Triangle& t, double n[3], do
 class Unblocker {
 public:
     Unblocker(mesh::TetMesh& m, const ConstraintFaces& faces, const std::vector<std::size_t>& missing,
-              std::size_t max_star)
-        : m_(m), faces_(faces), missing_(missing), max_star_(max_star), incident_(mesh::incident_tets(m)) {
+              const UnblockingOptions& options)
+        : m_(m), faces_(faces), missing_(missing), options_(options), incident_(mesh::incident_tets(m)) {
         boxes_.reserve(missing_.size());
         for (std::size_t f : missing_) {
             const Triangle& t = faces_.triangle(f);
@@ -178,16 +177,18 @@ private:
         const double first = side >= 0 ? 1.0 : -1.0;
         const double ab[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
         const double length = std::sqrt(dot(ab, ab));
-        const std::size_t targets = std::clamp<std::size_t>(count / kTetsPerPoint, 1, kMaxPointsPerEdge);
+        const std::size_t targets =
+            std::clamp<std::size_t>(count / std::max<std::size_t>(options_.tets_per_point, 1), 1, kMaxPointsPerEdge);
+        const double clearance = options_.clearance * scale;
         for (std::size_t i = 0; i < targets && count > 0; ++i) {
             const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
             const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
             bool kept = false;
-            for (double d = length / 4; d >= kClearance * scale && !kept; d /= 2)
+            for (double d = length / 4; d >= clearance && !kept; d /= 2)
                 for (const double dir : {first, -first}) {
                     const double p[3] = {on_edge[0] + dir * d * n[0], on_edge[1] + dir * d * n[1],
                                          on_edge[2] + dir * d * n[2]};
-                    if (try_point(a, b, on_edge, p, kClearance * scale, count, steiner)) {
+                    if (try_point(a, b, on_edge, p, clearance, count, steiner)) {
                         kept = true;
                         break;
                     }
@@ -196,7 +197,7 @@ private:
     }
 
     // Inserts p if it passes the tests and ab then meets fewer than `count`
-    // tetrahedra (count updated) with a star of at most max_star_
+    // tetrahedra (count updated) with a star of at most options_.max_star
     // tetrahedra; otherwise leaves the mesh as it was (and counts a point
     // that only its star kept out).
     bool try_point(VertexId a, VertexId b, const double* target, const double* p, double clearance,
@@ -208,7 +209,7 @@ private:
         std::size_t star = 0;
         if (!insert(at, p, steiner, star)) return false;
         const std::size_t after = met_count(a, b);
-        if (after < count && star <= max_star_) {
+        if (after < count && star <= options_.max_star) {
             count = after;
             return true;
         }
@@ -308,7 +309,7 @@ private:
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
     const std::vector<std::size_t>& missing_;
-    const std::size_t max_star_;
+    const UnblockingOptions options_;
     UnblockingResult result_;
     std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
@@ -319,8 +320,8 @@ private:
 
 UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, std::vector<VertexId>& steiner,
-                                          std::size_t max_star) {
-    return Unblocker(m, faces, missing, max_star).run(steiner);
+                                          const UnblockingOptions& options) {
+    return Unblocker(m, faces, missing, options).run(steiner);
 }
 
 }  // namespace cbr::recover

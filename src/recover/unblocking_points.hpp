@@ -29,6 +29,22 @@ constexpr std::size_t kUnblockingMaxStar = 256;
 // and what the flips then left defeated conforming recovery (recovery.cpp).
 constexpr std::size_t kUnblockingAnyStar = static_cast<std::size_t>(-1);
 
+// Where and how near the surface the points go: one point per
+// `tets_per_point` tetrahedra a missing edge meets (at most 8 per edge), and
+// never nearer a missing triangle than `clearance` times the face's
+// shortest edge; stars of at most `max_star` tetrahedra.
+struct UnblockingOptions {
+    std::size_t max_star = kUnblockingMaxStar;
+    std::size_t tets_per_point = 8;
+    double clearance = 0.1;
+};
+// Denser and nearer the surface: recovery's retry when the default points
+// left faces that defeated conforming recovery. On turned prisms with
+// fanned caps (nearly flat layers of thin tetrahedra) they let the flips
+// recover what conforming recovery failed on: 3 of the 273 turned copies
+// that failed in every retry before recover so (recovery.cpp).
+constexpr UnblockingOptions kDenseUnblocking{kUnblockingMaxStar, 4, 0.05};
+
 struct UnblockingResult {
     std::size_t kept = 0;              // points kept (appended to the Steiner list)
     std::size_t refused_for_star = 0;  // points that helped but whose star was over the limit
@@ -39,13 +55,14 @@ struct UnblockingResult {
 // normal, the side of the crossed tetrahedra first. A point is inserted only
 // when it is strictly inside the tetrahedron the walk to it ends in (so on
 // no face of the mesh, recovered faces included), on no missing triangle
-// (exact) and not nearer one than a tenth of the face's shortest edge; it
-// is kept only when the edge then meets fewer tetrahedra and its star has
-// at most `max_star` tetrahedra (else the mesh is restored as it was).
-// Appends the points kept to `steiner`, in increasing id order.
+// (exact) and not nearer one than options.clearance times the face's
+// shortest edge; it is kept only when the edge then meets fewer
+// tetrahedra and its star has at most options.max_star tetrahedra (else
+// the mesh is restored as it was). Appends the points kept to `steiner`,
+// in increasing id order.
 UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing,
                                           std::vector<mesh::VertexId>& steiner,
-                                          std::size_t max_star = kUnblockingMaxStar);
+                                          const UnblockingOptions& options = {});
 
 }  // namespace cbr::recover
