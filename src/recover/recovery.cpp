@@ -1,8 +1,8 @@
 #include "recover/recovery.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <cstdint>
+#include <iterator>
 #include <string>
 
 #include "mesh/mesh_check.hpp"
