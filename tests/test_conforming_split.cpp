@@ -1218,6 +1218,20 @@ cbr::recover::RecoveryResult recover_fresh(const cbr::test::OffSurface& s, const
     return cbr::recover::recover_faces(c.m(), *c.faces, stats, options);
 }
 
+// recover_faces with the default options on the Delaunay mesh of surface
+// s, built afresh: required to succeed, checked (check_recovered_case);
+// its statistics.
+cbr::recover::RecoveryStats recover_checked(const cbr::test::OffSurface& s) {
+    Case c;
+    build(c, s.xyz, s.tris);
+    const std::vector<double> input(c.m().coordinates());
+    cbr::recover::RecoveryStats stats;
+    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
+    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
+    check_recovered_case(c, r, input);
+    return stats;
+}
+
 }  // namespace
 
 TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points of any star") {
@@ -1237,13 +1251,7 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with unblocking points
         CHECK_FALSE(r.unrecovered.empty());
         CHECK(r.why.find("other placements of unblocking points") == std::string::npos);
     }
-    Case c;
-    build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates());
-    cbr::recover::RecoveryStats stats;
-    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
-    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
-    check_recovered_case(c, r, input);
+    const cbr::recover::RecoveryStats stats = recover_checked(s);
     // The retry's points made the flips enough: no point on the surface
     // was needed, and the Steiner points it made went again (§6).
     CHECK(stats.steiner_generated > 0);
@@ -1270,14 +1278,7 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with denser unblocking
         CHECK_FALSE(r.unrecovered.empty());
         CHECK(r.why.find("the sub-faces of a face do not form a disk") != std::string::npos);
     }
-    Case c;
-    build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates());
-    cbr::recover::RecoveryStats stats;
-    const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats);
-    REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
-    check_recovered_case(c, r, input);
-    CHECK(stats.steiner_generated > 0);
+    CHECK(recover_checked(s).steiner_generated > 0);
 }
 
 TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {
