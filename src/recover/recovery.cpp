@@ -142,6 +142,11 @@ struct UnblockingTry {
     UnblockingOptions options;
     bool after_star_refusal;
 };
+// `placement` with no limit on the stars.
+constexpr UnblockingOptions of_any_star(UnblockingOptions placement) {
+    placement.max_star = kUnblockingAnyStar;
+    return placement;
+}
 constexpr UnblockingTry kUnblockingTries[] = {
     // The default: stars of at most kUnblockingMaxStar tetrahedra.
     {UnblockingOptions{}, false},
@@ -154,11 +159,11 @@ constexpr UnblockingTry kUnblockingTries[] = {
     // star costs §6 suppression time (the shared cylinder: 0.1 s -> 0.4 s
     // without it), and a surface that recovers in the first try gets the
     // same mesh as before.
-    {UnblockingOptions{kUnblockingAnyStar, 8, 0.1}, true},
+    {of_any_star(UnblockingOptions{}), true},
     // Denser points, nearer the faces (kDenseUnblocking), then the same
     // without the star limit.
     {kDenseUnblocking, false},
-    {UnblockingOptions{kUnblockingAnyStar, kDenseUnblocking.tets_per_point, kDenseUnblocking.clearance}, true},
+    {of_any_star(kDenseUnblocking), true},
 };
 
 static_assert(std::size(kUnblockingTries) == static_cast<std::size_t>(RecoveryOptions{}.unblocking_tries),
