@@ -289,6 +289,10 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
    connected sets of tetrahedra separated by input triangles: 0 outside,
    then 1, 2, ... numbered by the smallest input triangle on their boundary
    (and its side), so the numbering depends on the input only.
+   Within an attempt, where the interior Steiner points that unblock the
+   flips leave faces that the later steps cannot complete, it starts again
+   from the mesh the flips left with other such points (of any star size,
+   then denser and nearer the faces).
    When recovery fails on the Delaunay mesh of the points, it starts again
    from that mesh with other budgets for the deepest flip round (10,000,
    then 30,000 edge removals a face; only with CBR_PARAM_RECOVERY_DEEP_FLIPS
