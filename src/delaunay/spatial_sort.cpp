@@ -101,6 +101,16 @@ std::vector<KeyedId> hilbert_keys(const double* coords, const mesh::VertexId* fi
 
 }  // namespace
 
+std::vector<std::size_t> hilbert_order(const double* xyz, std::size_t n) {
+    std::vector<mesh::VertexId> ids(n);
+    for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<mesh::VertexId>(i);
+    std::vector<KeyedId> items = hilbert_keys(xyz, ids.data(), ids.data() + n);
+    if (items.size() > 1) radix_sort(items, 3 * kHilbertBits);  // stable: ties stay in index order
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = items[i].id;
+    return order;
+}
+
 void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint64_t seed) {
     // Keys first, in the given order (sequential memory access), then the
     // shuffle and the rounds move (key, id) pairs only: no coordinate is

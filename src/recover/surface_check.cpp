@@ -4,10 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
-#include <cstdint>
-#include <limits>
 #include <utility>
 
+#include "delaunay/spatial_sort.hpp"
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 
@@ -172,11 +171,12 @@ void report_edges(const Surface& s, const std::vector<TriState>& state, Collecto
 // Bounding-box tree. Boxes are min/max of input coordinates, so they are
 // exact and closed: triangles that touch have touching boxes, and the
 // candidate pairs are a superset of the meeting pairs. The items are put in
-// the order of their box centres along a Morton (Z-order) curve by one
-// sort, and each node splits its range in halves: nearby boxes share
-// subtrees, as with median splits on the longest axis, for a fraction of
-// the building (igea's 270k triangles: a median split per node moved every
-// 56-byte item once per level, a fifth of the check).
+// the order of their box centres along the Hilbert curve of the Delaunay
+// insertion order (delaunay::hilbert_order, one radix sort), and each node
+// splits its range in halves: nearby boxes share subtrees, as with median
+// splits on the longest axis, for a fraction of the building (igea's 270k
+// triangles: a median split per node moved every 56-byte item once per
+// level, a fifth of the check).
 // ---------------------------------------------------------------------------
 struct Box {
     std::array<double, 3> lo;
@@ -214,9 +214,15 @@ public:
     template <class BoxOf>
     BoxTree(const std::vector<std::size_t>& ids, BoxOf box_of) {
         if (ids.empty()) return;
-        const std::vector<std::pair<std::uint64_t, std::size_t>> keyed = morton_order(ids, box_of);
-        items_.reserve(keyed.size());
-        for (const auto& [code, i] : keyed) items_.push_back({box_of(i), i});
+        std::vector<double> centres;
+        centres.reserve(3 * ids.size());
+        for (const std::size_t i : ids) {
+            const Box b = box_of(i);
+            for (int k = 0; k < 3; ++k) centres.push_back(0.5 * b.lo[k] + 0.5 * b.hi[k]);
+        }
+        items_.reserve(ids.size());
+        for (const std::size_t n : delaunay::hilbert_order(centres.data(), ids.size()))
+            items_.push_back({box_of(ids[n]), ids[n]});
         nodes_.reserve(items_.size());  // leaves hold at least 2 items: fewer than n nodes
         build(0, items_.size());
     }
@@ -277,53 +283,6 @@ private:
     template <class Visit>
     void visit_if_overlap(std::size_t i, std::size_t j, Visit& visit) const {
         if (items_[i].box.overlaps(items_[j].box)) visit(items_[i].id, items_[j].id);
-    }
-
-    // Spreads the low 21 bits of x to every third bit.
-    static std::uint64_t spread(std::uint64_t x) {
-        x &= 0x1fffff;
-        x = (x | x << 32) & 0x1f00000000ffffull;
-        x = (x | x << 16) & 0x1f0000ff0000ffull;
-        x = (x | x << 8) & 0x100f00f00f00f00full;
-        x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-        x = (x | x << 2) & 0x1249249249249249ull;
-        return x;
-    }
-
-    // `ids` with the Morton codes of their box centres (21 bits per axis
-    // over the centres' bounding box), sorted by code, then id: a function
-    // of the input alone.
-    template <class BoxOf>
-    static std::vector<std::pair<std::uint64_t, std::size_t>> morton_order(const std::vector<std::size_t>& ids,
-                                                                          BoxOf box_of) {
-        std::vector<std::array<double, 3>> centres;
-        centres.reserve(ids.size());
-        std::array<double, 3> lo, hi;
-        lo.fill(std::numeric_limits<double>::infinity());
-        hi.fill(-std::numeric_limits<double>::infinity());
-        for (const std::size_t i : ids) {
-            const Box b = box_of(i);
-            std::array<double, 3>& c = centres.emplace_back();
-            for (int k = 0; k < 3; ++k) {
-                c[k] = 0.5 * b.lo[k] + 0.5 * b.hi[k];
-                lo[k] = std::min(lo[k], c[k]);
-                hi[k] = std::max(hi[k], c[k]);
-            }
-        }
-        std::array<double, 3> scale;
-        for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? 2097151.0 / (hi[k] - lo[k]) : 0.0;
-        std::vector<std::pair<std::uint64_t, std::size_t>> keyed;
-        keyed.reserve(ids.size());
-        for (std::size_t n = 0; n < ids.size(); ++n) {
-            std::uint64_t code = 0;
-            for (int k = 0; k < 3; ++k) {
-                const double q = std::min(std::max((centres[n][k] - lo[k]) * scale[k], 0.0), 2097151.0);
-                code |= spread(static_cast<std::uint64_t>(q)) << k;
-            }
-            keyed.emplace_back(code, ids[n]);
-        }
-        std::sort(keyed.begin(), keyed.end());
-        return keyed;
     }
 
     // Node of items [begin, end): a leaf, or its two halves; its box is
