@@ -71,7 +71,18 @@ private:
         // (where the insertion's growth refuses a tetrahedron).
         bool reusable = true;
     };
-    Probe probe(TetId start, const double* p, bool want_star = false);
+    // What makes a caller refuse a point, so that probe() can stop as soon
+    // as it is certain: the cavity meets a constraint face whose diametral
+    // ball holds the point, a constraint face's plane nearer than min_gap,
+    // or a star quality at or below min_star_quality. The answer that
+    // refuses is then exact; the other fields are partial.
+    struct Refusal {
+        bool encroaching = false;
+        double min_gap = 0;
+        double min_star_quality = -2;
+    };
+    Probe probe(TetId start, const double* p, bool want_star, const Refusal& refusal);
+    void measure_constraint_face(TetId t, int f, const double* p, Probe& out) const;
     bool try_centroid(TetId t);
     bool insert(const Point& p, TetId start, const Probe& probed);
     bool try_circumcentre(TetId t);
@@ -116,8 +127,10 @@ bool Refiner::meets_quality(TetId t) const {
 // (counted where its projection falls within the face's circumcircle),
 // and, when asked, the smallest quality of the star (every boundary face
 // coned to p; -1 when p does not see a boundary face strictly, where the
-// §5.1 correction would change the cavity).
-Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
+// §5.1 correction would change the cavity). Stops early once `refusal`
+// holds: most candidates near a thin CAD wall encroach, and their
+// cavities are the largest.
+Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star, const Refusal& refusal) {
     Probe out;
     std::vector<TetId>& cavity = probe_cavity_;
     mesh::SlotMarks& marks = probe_marks_;
@@ -127,7 +140,11 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
     for (std::size_t i = 0; i < cavity.size(); ++i) {
         const TetId t = cavity[i];
         for (int f = 0; f < 4; ++f) {
-            if (m_.is_constrained(t, f)) continue;
+            if (m_.is_constrained(t, f)) {
+                measure_constraint_face(t, f, p, out);
+                if ((refusal.encroaching && out.encroaches) || out.gap < refusal.min_gap) return out;
+                continue;
+            }
             const TetId n = facet_tet(m_.neighbor(t, f));
             if (m_.is_ghost(n)) {
                 out.reusable = false;  // the insertion's growth tests ghosts
@@ -157,22 +174,33 @@ Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star) {
             if (want_star && out.star_quality >= 0) {
                 if (geom::orient3d(a, b, c, p) <= 0) out.star_quality = -1;
                 else out.star_quality = std::min(out.star_quality, radius_ratio(a, b, c, p));
+                if (out.star_quality <= refusal.min_star_quality) return out;
             }
-            if (!constrained) continue;
-            Point centre;
-            double r2 = 0;
-            if (!triangle_circumsphere(a, b, c, centre, r2)) continue;
-            const double d2 = squared_distance(p, centre.data());
-            if (d2 < r2) out.encroaches = true;
-            const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-            const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-            const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-            const double h = (n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2])) / std::sqrt(nn);
-            if (d2 - h * h < r2) out.gap = std::min(out.gap, std::fabs(h));
         }
     }
     return out;
+}
+
+// Whether p encroaches on constraint face f of t (lies in its diametral
+// ball), and its distance to the face's plane where p's projection falls
+// within the face's circumcircle, folded into `out`.
+void Refiner::measure_constraint_face(TetId t, int f, const double* p, Probe& out) const {
+    const VertexId* v = m_.vertices(t);
+    const int* k = kFaceVertices[f];
+    const double* a = m_.point(v[k[0]]);
+    const double* b = m_.point(v[k[1]]);
+    const double* c = m_.point(v[k[2]]);
+    Point centre;
+    double r2 = 0;
+    if (!triangle_circumsphere(a, b, c, centre, r2)) return;
+    const double d2 = squared_distance(p, centre.data());
+    if (d2 < r2) out.encroaches = true;
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const double h = (n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2])) / std::sqrt(nn);
+    if (d2 - h * h < r2) out.gap = std::min(out.gap, std::fabs(h));
 }
 
 // A sliver (radius ratio under kSliverQuality) whose circumcentre was
@@ -188,7 +216,10 @@ bool Refiner::try_centroid(TetId t) {
     for (int k = 0; k < 3; ++k) g[k] = 0.25 * (q[0][k] + q[1][k] + q[2][k] + q[3][k]);
     const Location loc = locate_in_region(c_, t, g.data());
     if (loc.where != Located::kInside) return false;
-    const Probe pr = probe(loc.tet, g.data(), true);
+    Refusal refusal;
+    refusal.encroaching = true;
+    refusal.min_star_quality = kSliverGain * old_q;
+    const Probe pr = probe(loc.tet, g.data(), true, refusal);
     if (pr.encroaches || pr.star_quality <= kSliverGain * old_q) return false;
     return insert(g, loc.tet, pr);
 }
@@ -223,7 +254,9 @@ bool Refiner::try_circumcentre(TetId t) {
     if (!circumcentre(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), cc)) return false;
     const Location loc = locate_in_region(c_, t, cc.data());
     if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
-    const Probe pr = probe(loc.tet, cc.data());
+    Refusal refusal;
+    refusal.encroaching = true;
+    const Probe pr = probe(loc.tet, cc.data(), false, refusal);
     if (pr.encroaches) return false;
     // In a Delaunay cavity no vertex is nearer to the circumcentre than the
     // circumradius; the cavity correction and the protected faces can
@@ -255,7 +288,9 @@ bool Refiner::try_edge_midpoint(TetId t) {
     // Too close to the surface: splitting again and again toward a face
     // that cannot be split would only make flat elements.
     const double length = std::sqrt(squared_distance(a, b));
-    const Probe pr = probe(loc.tet, mid.data());
+    Refusal refusal;
+    refusal.min_gap = kMinSurfaceGap * length;
+    const Probe pr = probe(loc.tet, mid.data(), false, refusal);
     if (pr.gap < kMinSurfaceGap * length) return false;
     return insert(mid, loc.tet, pr);
 }
