@@ -48,23 +48,50 @@ std::vector<double> surface_sizes(const mesh::TetMesh& m, const recover::Constra
     return h;
 }
 
-// Adjacency of the finite edges of m (each vertex's neighbours).
-std::vector<std::vector<VertexId>> edge_lists(const mesh::TetMesh& m) {
-    std::vector<std::vector<VertexId>> adj(m.vertex_count());
+// Adjacency of the finite edges of m: vertex v's neighbours, ascending,
+// are ids[offsets[v] .. offsets[v + 1]). Filled in place (each tetrahedron
+// lists three neighbours per corner, duplicates then squeezed out), not as
+// one growing vector per vertex: on igea those reallocations were most of
+// the field's setup.
+struct EdgeLists {
+    std::vector<std::size_t> offsets;
+    std::vector<VertexId> ids;
+};
+
+EdgeLists edge_lists(const mesh::TetMesh& m) {
+    const std::size_t n = m.vertex_count();
+    const auto finite = [&](TetId t) { return !m.is_free(t) && !m.is_ghost(t); };
+    std::vector<std::size_t> start(n + 1, 0);
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (finite(t))
+            for (int i = 0; i < 4; ++i) start[m.vertex(t, i) + 1] += 3;
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<VertexId> ids(start[n]);
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
     for (TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t) || m.is_ghost(t)) continue;
+        if (!finite(t)) continue;
         const VertexId* v = m.vertices(t);
         for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j) {
-                adj[v[i]].push_back(v[j]);
-                adj[v[j]].push_back(v[i]);
-            }
+            for (int j = 0; j < 4; ++j)
+                if (j != i) ids[fill[v[i]]++] = v[j];
     }
-    for (auto& a : adj) {
-        std::sort(a.begin(), a.end());
-        a.erase(std::unique(a.begin(), a.end()), a.end());
+    EdgeLists out;
+    out.offsets.assign(n + 1, 0);
+    std::size_t kept = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        const auto first = ids.begin() + static_cast<std::ptrdiff_t>(start[v]);
+        const auto last = ids.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+        std::sort(first, last);
+        const auto unique_end = std::unique(first, last);
+        // Squeezed toward the front; kept <= start[v], so the ranges never
+        // overlap with the destination after the source.
+        if (kept != start[v]) std::copy(first, unique_end, ids.begin() + static_cast<std::ptrdiff_t>(kept));
+        kept += static_cast<std::size_t>(unique_end - first);
+        out.offsets[v + 1] = kept;
     }
-    return adj;
+    ids.resize(kept);
+    out.ids = std::move(ids);
+    return out;
 }
 
 // h(v) = min over u of h(u) + g |uv| along mesh edges (Dijkstra). A
@@ -72,7 +99,7 @@ std::vector<std::vector<VertexId>> edge_lists(const mesh::TetMesh& m) {
 // the length of the input edges there, which no refinement can change
 // (a smaller value could never be met by the tetrahedra on the surface).
 void grade(const mesh::TetMesh& m, double g, const std::vector<char>& on_surface, std::vector<double>& h) {
-    const auto adj = edge_lists(m);
+    const EdgeLists adj = edge_lists(m);
     using Item = std::pair<double, VertexId>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
     for (VertexId v = 0; v < h.size(); ++v)
@@ -81,7 +108,8 @@ void grade(const mesh::TetMesh& m, double g, const std::vector<char>& on_surface
         const auto [hv, v] = queue.top();
         queue.pop();
         if (hv > h[v]) continue;
-        for (VertexId u : adj[v]) {
+        for (std::size_t k = adj.offsets[v]; k < adj.offsets[v + 1]; ++k) {
+            const VertexId u = adj.ids[k];
             if (on_surface[u] && !on_surface[v]) continue;
             const double cand = hv + g * std::sqrt(squared_distance(m.point(v), m.point(u)));
             if (cand < h[u]) {
