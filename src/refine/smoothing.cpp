@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "geom/predicates.hpp"
@@ -43,6 +44,8 @@ private:
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
     std::vector<double> qualities_;  // of ball_ at the vertex's position, in ball_'s order
+    std::vector<std::uint64_t> seen_;  // per vertex: stamp_ when already in neighbours_
+    std::uint64_t stamp_ = 0;
 };
 
 // The ball's minimum quality when it is above `floor`; otherwise some value
@@ -116,13 +119,20 @@ bool Smoother::smooth(VertexId v, TetId start) {
     for (TetId t : ball_) changed = changed || c_.changed(t);
     // Nothing changed around v since its last try: it would fail again.
     if (!changed) return false;
+    // The link's vertices once each (a stamp per vertex), then ascending:
+    // the centroid's sum runs in that order.
+    if (seen_.size() < m_.vertex_count()) seen_.resize(m_.vertex_count(), 0);
+    ++stamp_;
     for (TetId t : ball_) {
         if (!c_.in_domain(t)) return false;
-        for (int i = 0; i < 4; ++i)
-            if (m_.vertex(t, i) != v) neighbours_.push_back(m_.vertex(t, i));
+        for (int i = 0; i < 4; ++i) {
+            const VertexId u = m_.vertex(t, i);
+            if (u == v || seen_[u] == stamp_) continue;
+            seen_[u] = stamp_;
+            neighbours_.push_back(u);
+        }
     }
     std::sort(neighbours_.begin(), neighbours_.end());
-    neighbours_.erase(std::unique(neighbours_.begin(), neighbours_.end()), neighbours_.end());
     Point centroid = {0, 0, 0};
     double mean_edge = 0;
     const Point here = {m_.point(v)[0], m_.point(v)[1], m_.point(v)[2]};
