@@ -109,7 +109,7 @@ bool holds_edge(const TetMesh& m, TetId t, VertexId u, VertexId v) {
     return u != v && live(m, t) && vertex_index(m, t, u) >= 0 && vertex_index(m, t, v) >= 0;
 }
 
-bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
+bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out, std::size_t max_size) {
     out.tets.clear();
     out.ring.clear();
     if (!holds_edge(m, start, u, v)) return false;
@@ -120,6 +120,7 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out) {
     // off after slot_count() steps.
     for (std::size_t steps = 0; steps <= m.slot_count(); ++steps) {
         const int x = kRing.x[iu][iv];
+        if (out.tets.size() == max_size) break;
         out.tets.push_back(t);
         out.ring.push_back(m.vertex(t, x));
         t = facet_tet(m.neighbor(t, x));

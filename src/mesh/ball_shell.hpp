@@ -34,8 +34,10 @@ struct Shell {
     bool has_ghost() const;
 };
 // False (and `out` empty) when `start` is not a live tetrahedron containing
-// u and v (u != v).
-bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out);
+// u and v (u != v), or when the shell has more than `max_size` tetrahedra
+// (the walk stops there: callers that refuse large shells skip the rest).
+bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out,
+           std::size_t max_size = static_cast<std::size_t>(-1));
 
 // A tetrahedron containing edge uv, found in the ball of u (`start`
 // contains u); kNoTet when uv is not an edge.

@@ -77,6 +77,9 @@ private:
     // around it. (An open-addressing table: std::unordered_set's division
     // and scattered nodes were half the sweep's own time on igea.)
     mesh::KeyTable<bool> refused_;
+    // remove_edge's scratch, kept across calls.
+    mesh::Shell shell_;
+    std::vector<mesh::RingTriangle> triangles_;
 };
 
 // Edge removal of uv (Definition 5.8, the shell transformation) with the
@@ -92,16 +95,16 @@ bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
 }
 
 bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
-    mesh::Shell s;
-    if (!mesh::shell(m_, u, v, t, s) || s.size() < 3 || s.size() > kMaxShell || s.has_ghost()) return false;
+    mesh::Shell& s = shell_;
+    if (!mesh::shell(m_, u, v, t, s, kMaxShell) || s.size() < 3 || s.has_ghost()) return false;
     const std::int32_t region = c_.region(t);
     double old_min = 1;
     for (TetId x : s.tets) {
         if (!c_.in_domain(x) || c_.region(x) != region) return false;
         old_min = std::min(old_min, q(x));
     }
-    const std::vector<mesh::RingTriangle> tris = mesh::best_ring_triangulation(m_, u, v, s);
-    if (tris.empty()) return false;
+    std::vector<mesh::RingTriangle>& tris = triangles_;
+    if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr)) return false;
     // Only the chords of the ring are new edges: the size bound applies to
     // them (the ring's sides are edges already, whatever their length).
     const int n = static_cast<int>(s.size());

@@ -272,7 +272,7 @@ void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice&
     for (std::size_t e : widest_edges(sliver)) {
         const VertexId a = v[kTetEdges[e][0]], b = v[kTetEdges[e][1]];
         if (c_.is_surface_edge(a, b)) continue;
-        if (!mesh::shell(m_, a, b, sliver, shell_) || shell_.has_ghost() || shell_.size() > kMaxShell) continue;
+        if (!mesh::shell(m_, a, b, sliver, shell_, kMaxShell) || shell_.has_ghost()) continue;
         const bool inside = std::all_of(shell_.tets.begin(), shell_.tets.end(),
                                         [&](TetId t) { return c_.in_domain(t) && c_.region(t) == region; });
         if (!inside) continue;
