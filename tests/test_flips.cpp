@@ -1031,6 +1031,14 @@ TEST_CASE("ball, shell and incident_tets agree with brute-force scans") {
         }
         const TetId e = find_edge_tet(m, u, t, v);
         CHECK(expected.count(e) == 1);
+        // A size limit: the same shell when it fits, else false and empty.
+        Shell limited;
+        REQUIRE(shell(m, u, v, t, limited, n));
+        CHECK(limited.tets == s.tets);
+        CHECK(limited.ring == s.ring);
+        CHECK_FALSE(shell(m, u, v, t, limited, n - 1));
+        CHECK(limited.tets.empty());
+        CHECK(limited.ring.empty());
     }
 }
 
