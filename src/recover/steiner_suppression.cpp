@@ -25,6 +25,7 @@
 #include <array>
 #include <limits>
 #include <set>
+#include <utility>
 
 #include "mesh/ball_shell.hpp"
 #include "mesh/errors.hpp"
@@ -117,16 +118,34 @@ struct Removal {
     std::vector<mesh::RingTriangle> triangles;
 };
 
+// The link vertices of v, ascending, each with the first tetrahedron of
+// `ball` that holds it. `ball` in mesh::ball's order is the breadth-first
+// order in which mesh::find_edge_tet(m, v, ball.front(), x) looks, so this
+// is the tetrahedron it would return, found for every x in one pass
+// instead of one walk per link vertex (those walks were 3.6% of the
+// feeder body's recovery).
+std::vector<std::pair<VertexId, TetId>> link_vertices_with_tets(const TetMesh& m, VertexId v,
+                                                                const std::vector<TetId>& ball) {
+    std::vector<std::pair<VertexId, TetId>> out;
+    for (TetId t : ball)
+        for (int i = 0; i < 4; ++i)
+            if (m.vertex(t, i) != v) out.emplace_back(m.vertex(t, i), t);
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    out.erase(std::unique(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+              out.end());
+    return out;
+}
+
 // The valid edge removals at v, best first; only the first found when
-// `first_only` (the caller asks whether there is one).
+// `first_only` (the caller asks whether there is one). `ball` is v's ball
+// as mesh::ball returns it.
 std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vector<TetId>& ball,
                                    bool first_only = false) {
     std::vector<Removal> out;
-    for (VertexId x : link_vertices(m, v, ball)) {
-        const TetId t = mesh::find_edge_tet(m, v, ball.front(), x);
+    for (const auto& [x, t] : link_vertices_with_tets(m, v, ball)) {
         Removal r;
         r.x = x;
-        if (t == mesh::kNoTet || !mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
+        if (!mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
         r.triangles = mesh::best_ring_triangulation(m, v, x, r.shell, &r.min_quality);
         if (!r.triangles.empty()) out.push_back(std::move(r));
         if (first_only && !out.empty()) return out;
