@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_set>
 #include <utility>
 
 #include "geom/intersect.hpp"
@@ -11,6 +10,7 @@
 #include "geom/triangle_distance.hpp"
 #include "geom/vec3.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
 
 namespace cbr::recover {
@@ -122,7 +122,8 @@ private:
         std::vector<Met> out;
         std::vector<TetId> near;
         if (!mesh::ball(m_, a, incident_[a], near)) return out;
-        std::unordered_set<TetId> seen(near.begin(), near.end());
+        marks_.new_round(m_.slot_count());
+        for (TetId t : near) marks_.set(t, kSeen);
         for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
             const TetId t = near[i];
             if (m_.is_ghost(t)) continue;
@@ -137,7 +138,9 @@ private:
                 met = true;
                 if (m_.is_constrained(t, f)) continue;
                 const TetId n = mesh::facet_tet(m_.neighbor(t, f));
-                if (seen.insert(n).second) near.push_back(n);
+                if (marks_.has(n, kSeen)) continue;
+                marks_.set(n, kSeen);
+                near.push_back(n);
             }
             if (!met) continue;
             double c[3];
@@ -234,17 +237,20 @@ private:
     // before its correction), include one that ab meets: else p cannot
     // remove a crossing, and is not worth an insertion and a rollback.
     bool conflicts_reach(TetId at, const double* p, const std::vector<Met>& met) {
-        std::unordered_set<TetId> wanted;
-        for (const Met& x : met) wanted.insert(x.tet);
+        marks_.new_round(m_.slot_count());
+        for (const Met& x : met) marks_.set(x.tet, kWanted);
         std::vector<TetId> stack{at};
-        std::unordered_set<TetId> seen{at};
-        while (!stack.empty() && seen.size() < kMaxSearchedTets) {
+        marks_.set(at, kSeen);
+        std::size_t seen = 1;
+        while (!stack.empty() && seen < kMaxSearchedTets) {
             const TetId t = stack.back();
             stack.pop_back();
-            if (wanted.count(t)) return true;
+            if (marks_.has(t, kWanted)) return true;
             for (int f = 0; f < 4; ++f) {
                 const TetId n = mesh::facet_tet(m_.neighbor(t, f));
-                if (m_.is_constrained(t, f) || m_.is_ghost(n) || !seen.insert(n).second) continue;
+                if (m_.is_constrained(t, f) || m_.is_ghost(n) || marks_.has(n, kSeen)) continue;
+                marks_.set(n, kSeen);
+                ++seen;
                 const VertexId* v = m_.vertices(n);
                 if (geom::insphere_sos(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), p) > 0)
                     stack.push_back(n);
@@ -314,6 +320,11 @@ private:
     std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
     ProtectedInserter inserter_;
+    // Scratch of met_tets and conflicts_reach: tetrahedra reached (kSeen)
+    // and, in conflicts_reach, those the segment meets (kWanted).
+    static constexpr std::uint8_t kSeen = 1u << 0;
+    static constexpr std::uint8_t kWanted = 1u << 1;
+    mesh::SlotMarks marks_;
 };
 
 }  // namespace
