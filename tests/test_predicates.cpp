@@ -415,6 +415,69 @@ TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, 
     CHECK(refused > 100);
 }
 
+TEST_CASE("normal_in_doubles and dot_in_doubles: Dekker's and the fused multiply-add's checks agree, and with GMP") {
+    // PlaneSide's exact stage: the plane's normal u x v, then w . n, each in
+    // doubles when every step is exact; the sign of the dot product is then
+    // orient3d's. Same bit sizes as for det3_in_doubles.
+    Rng rng(15);
+    const bool fma = cbr::geom::detail::fma_available();
+    int exact = 0, refused = 0;
+    for (const int bits : {4, 12, 20, 26}) {
+        const double top = std::ldexp(1.0, bits);
+        for (int n = 0; n < 400; ++n) {
+            Point r[3];
+            for (Point& p : r)
+                for (double& x : p) x = std::round(rng.uniform(-top, top));
+            if (n % 2 == 0)  // in the plane of u and v: a zero dot product
+                for (int k = 0; k < 3; ++k) r[2][k] = 3 * r[0][k] - r[1][k];
+            const double scale = std::ldexp(1.0, rng.integer(-40, 40));
+            for (Point& p : r)
+                for (double& x : p) x *= scale;
+            double n_split[3], n_fma[3];
+            const bool split_ok = cbr::geom::detail::normal_in_doubles(r[0].data(), r[1].data(), n_split, false);
+            const bool fma_ok = cbr::geom::detail::normal_in_doubles(r[0].data(), r[1].data(), n_fma, fma);
+            CHECK(split_ok == fma_ok);
+            if (!split_ok) {
+                ++refused;
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) CHECK(n_split[k] == n_fma[k]);
+            double by_split = 0, by_fma = 0;
+            const bool dot_split_ok = cbr::geom::detail::dot_in_doubles(r[2].data(), n_split, by_split, false);
+            const bool dot_fma_ok = cbr::geom::detail::dot_in_doubles(r[2].data(), n_split, by_fma, fma);
+            CHECK(dot_split_ok == dot_fma_ok);
+            if (!dot_split_ok) {
+                ++refused;
+                continue;
+            }
+            ++exact;
+            CHECK(by_split == by_fma);
+            const int sign = (by_split > 0) - (by_split < 0);
+            CHECK(sign == ref_orient3d(Point{0, 0, 0}, r[0], r[1], r[2]));
+        }
+    }
+    CHECK(exact > 400);  // both kinds were met
+    CHECK(refused > 100);
+    // Steps whose rounding would change the answer must be refused.
+    // (2^27 + 1)(2^26 + 1) = 2^53 + 2^27 + 2^26 + 1 rounds to X = 2^53 +
+    // 2^27 + 2^26: w . n below is exactly 1, and 0 with that product rounded.
+    const double X = std::ldexp(1.0, 53) + std::ldexp(1.0, 27) + std::ldexp(1.0, 26);
+    const double n[3] = {1, 0, std::ldexp(1.0, 27) + 1};
+    const double w[3] = {-X, 0, std::ldexp(1.0, 26) + 1};
+    // 2^60 - 1, the z component of u x v here, is no double.
+    const double u[3] = {std::ldexp(1.0, 30), 1, 0};
+    const double v[3] = {1, std::ldexp(1.0, 30), 0};
+    // and (2^27 + 1)(2^26 + 1), the z component of p x q, no double either.
+    const double p[3] = {std::ldexp(1.0, 27) + 1, 0, 0};
+    const double q[3] = {0, std::ldexp(1.0, 26) + 1, 0};
+    for (const bool use_fma : {false, fma}) {
+        double dot = 0, normal[3];
+        CHECK_FALSE(cbr::geom::detail::dot_in_doubles(w, n, dot, use_fma));
+        CHECK_FALSE(cbr::geom::detail::normal_in_doubles(u, v, normal, use_fma));
+        CHECK_FALSE(cbr::geom::detail::normal_in_doubles(p, q, normal, use_fma));
+    }
+}
+
 TEST_CASE("orient3d: random points") {
     Rng rng(1);
     for (int n = 0; n < 3000; ++n) {

@@ -36,6 +36,9 @@ private:
     const double* c_;
     Normal state_ = Normal::kNotYet;
     xp::Expansion<4> normal_[3];
+    // The normal in doubles, when kExact and each component is exact so.
+    bool normal_in_doubles_ = false;
+    double normal_doubles_[3] = {0, 0, 0};
 };
 
 }  // namespace cbr::geom

@@ -128,6 +128,24 @@ template <bool kFma>
            exact_sum(ab, c, det);
 }
 
+// The normal (b - a) x (c - a) of a plane from u = b - a, v = c - a, and
+// the dot product of x - a with it, in doubles when every step is exact
+// (PlaneSide's exact stage on CAD coordinates).
+template <bool kFma>
+[[gnu::always_inline]] inline bool normal_steps(const double* u, const double* v, double* n) {
+    double l, r;
+    return exact_product<kFma>(u[1], v[2], l) && exact_product<kFma>(v[1], u[2], r) && exact_sum(l, -r, n[0]) &&
+           exact_product<kFma>(u[2], v[0], l) && exact_product<kFma>(v[2], u[0], r) && exact_sum(l, -r, n[1]) &&
+           exact_product<kFma>(u[0], v[1], l) && exact_product<kFma>(v[0], u[1], r) && exact_sum(l, -r, n[2]);
+}
+
+template <bool kFma>
+[[gnu::always_inline]] inline bool dot_steps(const double* w, const double* n, double& dot) {
+    double a, b, c, ab;
+    return exact_product<kFma>(w[0], n[0], a) && exact_product<kFma>(w[1], n[1], b) &&
+           exact_product<kFma>(w[2], n[2], c) && exact_sum(a, b, ab) && exact_sum(ab, c, dot);
+}
+
 // A portable x86-64 build may not assume a fused multiply-add, but most
 // processors have one: the fma steps are compiled for it apart, and taken
 // when the processor says so (fma_available).
@@ -135,6 +153,12 @@ template <bool kFma>
 #define CBR_FMA_AT_RUN_TIME 1
 [[gnu::target("fma")]] bool det3_steps_fma(const double* u, const double* v, const double* w, double& det) {
     return det3_steps<true>(u, v, w, det);
+}
+[[gnu::target("fma")]] bool normal_steps_fma(const double* u, const double* v, double* n) {
+    return normal_steps<true>(u, v, n);
+}
+[[gnu::target("fma")]] bool dot_steps_fma(const double* w, const double* n, double& dot) {
+    return dot_steps<true>(w, n, dot);
 }
 #endif
 
@@ -435,6 +459,28 @@ bool det3_in_doubles(const double* u, const double* v, const double* w, double& 
     return det3_steps<false>(u, v, w, det);
 }
 
+bool normal_in_doubles(const double* u, const double* v, double* n, bool fma) {
+#if defined(CBR_FMA_AT_RUN_TIME)
+    if (fma) return normal_steps_fma(u, v, n);
+#elif defined(FP_FAST_FMA)
+    if (fma) return normal_steps<true>(u, v, n);
+#else
+    (void)fma;
+#endif
+    return normal_steps<false>(u, v, n);
+}
+
+bool dot_in_doubles(const double* w, const double* n, double& dot, bool fma) {
+#if defined(CBR_FMA_AT_RUN_TIME)
+    if (fma) return dot_steps_fma(w, n, dot);
+#elif defined(FP_FAST_FMA)
+    if (fma) return dot_steps<true>(w, n, dot);
+#else
+    (void)fma;
+#endif
+    return dot_steps<false>(w, n, dot);
+}
+
 int orient3d_exact_raw(const double* a, const double* b, const double* c, const double* d) {
     return orient3d_raw_expansion(a, b, c, d).sign();
 }
@@ -530,7 +576,12 @@ int lexicographic_compare(const double* p, const double* q) {
 // w . (u x v) with u = b - a, v = c - a, w = x - a: det[u; v; w], the
 // determinant orient3d_exact expands along z (exact when the differences
 // are).
+// The shortcuts of orient3d_exact first (x a corner of the face, or on
+// one axis-parallel plane with it: exactly 0), then, when the normal and
+// the dot product are exact in doubles (CAD coordinates, flat hull faces),
+// their rounded value; the expansions only otherwise.
 int PlaneSide::exact_sign(const double* x) {
+    if (same_point(x, a_) || same_point(x, b_) || same_point(x, c_) || on_one_axis_plane(a_, b_, c_, x)) return 0;
     if (state_ == Normal::kNotYet) {
         double u[3], v[3];
         if (exact_differences(b_, a_, u) & exact_differences(c_, a_, v)) {
@@ -538,6 +589,7 @@ int PlaneSide::exact_sign(const double* x) {
             normal_[1] = xp::minor2(u[2], v[0], v[2], u[0]);  // uz vx - vz ux
             normal_[2] = xp::minor2(u[0], v[1], v[0], u[1]);  // ux vy - vx uy
             state_ = Normal::kExact;
+            normal_in_doubles_ = detail::normal_in_doubles(u, v, normal_doubles_, detail::fma_available());
         } else {
             state_ = Normal::kInexact;
         }
@@ -545,6 +597,9 @@ int PlaneSide::exact_sign(const double* x) {
     double w[3];
     if (state_ == Normal::kInexact || !exact_differences(x, a_, w))
         return detail::orient3d_exact(a_, b_, c_, x, nullptr);
+    double dot;
+    if (normal_in_doubles_ && detail::dot_in_doubles(w, normal_doubles_, dot, detail::fma_available()))
+        return (dot > 0) - (dot < 0);
     return ((w[0] * normal_[0] + w[1] * normal_[1]) + w[2] * normal_[2]).sign();
 }
 

@@ -117,6 +117,10 @@ int insphere_exact_raw(const double* a, const double* b, const double* c, const 
 bool det3_in_doubles(const double* u, const double* v, const double* w, double& det, bool fma);
 // Whether the processor has a fused multiply-add (asked once).
 bool fma_available();
+// PlaneSide's exact stage in doubles: the normal (u x v, u = b - a,
+// v = c - a) and w . n, each when every product and sum is exact.
+bool normal_in_doubles(const double* u, const double* v, double* n, bool fma);
+bool dot_in_doubles(const double* w, const double* n, double& dot, bool fma);
 
 // Filter error bounds. u = 2^-53 is the unit roundoff: for every operation
 // whose exact result x is non-zero, fl(x) = x (1 + delta), |delta| <= u (no
