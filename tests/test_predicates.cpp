@@ -376,6 +376,21 @@ TEST_CASE("orient3d: integer and dyadic points (the exact stage in doubles, and 
     }
 }
 
+// Three rows of integers in [-top, top], all scaled by one random power of
+// two; with `in_plane` the third is r0 - 2 r1 (a zero determinant: the
+// third lies in the plane of the first two).
+std::array<Point, 3> scaled_integer_rows(Rng& rng, double top, bool in_plane) {
+    std::array<Point, 3> r;
+    for (Point& p : r)
+        for (double& x : p) x = std::round(rng.uniform(-top, top));
+    if (in_plane)
+        for (int k = 0; k < 3; ++k) r[2][k] = r[0][k] - 2 * r[1][k];
+    const double scale = std::ldexp(1.0, rng.integer(-40, 40));
+    for (Point& p : r)
+        for (double& x : p) x *= scale;
+    return r;
+}
+
 TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, and with GMP") {
     // The exact stage's shortcut checks each product by its error term:
     // Dekker's split everywhere, one fma where the processor has one (the
@@ -389,14 +404,7 @@ TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, 
     for (const int bits : {4, 12, 20, 26}) {
         const double top = std::ldexp(1.0, bits);
         for (int n = 0; n < 400; ++n) {
-            Point r[3];
-            for (Point& p : r)
-                for (double& x : p) x = std::round(rng.uniform(-top, top));
-            if (n % 2 == 0)  // coplanar with the origin: a zero determinant
-                for (int k = 0; k < 3; ++k) r[2][k] = r[0][k] - 2 * r[1][k];
-            const double scale = std::ldexp(1.0, rng.integer(-40, 40));
-            for (Point& p : r)
-                for (double& x : p) x *= scale;
+            const std::array<Point, 3> r = scaled_integer_rows(rng, top, n % 2 == 0);
             double by_split = 0, by_fma = 0;
             const bool split_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_split, false);
             const bool fma_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_fma, fma);
@@ -425,14 +433,7 @@ TEST_CASE("normal_in_doubles and dot_in_doubles: Dekker's and the fused multiply
     for (const int bits : {4, 12, 20, 26}) {
         const double top = std::ldexp(1.0, bits);
         for (int n = 0; n < 400; ++n) {
-            Point r[3];
-            for (Point& p : r)
-                for (double& x : p) x = std::round(rng.uniform(-top, top));
-            if (n % 2 == 0)  // in the plane of u and v: a zero dot product
-                for (int k = 0; k < 3; ++k) r[2][k] = 3 * r[0][k] - r[1][k];
-            const double scale = std::ldexp(1.0, rng.integer(-40, 40));
-            for (Point& p : r)
-                for (double& x : p) x *= scale;
+            const std::array<Point, 3> r = scaled_integer_rows(rng, top, n % 2 == 0);
             double n_split[3], n_fma[3];
             const bool split_ok = cbr::geom::detail::normal_in_doubles(r[0].data(), r[1].data(), n_split, false);
             const bool fma_ok = cbr::geom::detail::normal_in_doubles(r[0].data(), r[1].data(), n_fma, fma);
