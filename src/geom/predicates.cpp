@@ -575,9 +575,8 @@ int lexicographic_compare(const double* p, const double* q) {
 
 // w . (u x v) with u = b - a, v = c - a, w = x - a: det[u; v; w], the
 // determinant orient3d_exact expands along z (exact when the differences
-// are).
-// The shortcuts of orient3d_exact first (x a corner of the face, or on
-// one axis-parallel plane with it: exactly 0), then, when the normal and
+// are). First orient3d_exact's shortcuts (x a corner of the face, or on
+// one axis-parallel plane with it: exactly 0); then, when the normal and
 // the dot product are exact in doubles (CAD coordinates, flat hull faces),
 // their rounded value; the expansions only otherwise.
 int PlaneSide::exact_sign(const double* x) {

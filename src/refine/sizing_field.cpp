@@ -83,8 +83,8 @@ EdgeLists edge_lists(const mesh::TetMesh& m) {
         const auto last = ids.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
         std::sort(first, last);
         const auto unique_end = std::unique(first, last);
-        // Squeezed toward the front; kept <= start[v], so the ranges never
-        // overlap with the destination after the source.
+        // Squeezed toward the front: kept <= start[v], so the copy's
+        // destination never starts inside its source.
         if (kept != start[v]) std::copy(first, unique_end, ids.begin() + static_cast<std::ptrdiff_t>(kept));
         kept += static_cast<std::size_t>(unique_end - first);
         out.offsets[v + 1] = kept;
