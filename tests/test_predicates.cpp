@@ -391,6 +391,22 @@ std::array<Point, 3> scaled_integer_rows(Rng& rng, double top, bool in_plane) {
     return r;
 }
 
+// One in-doubles evaluation by Dekker's split and by the fma: both must
+// accept or refuse together, agree on the value, and (accepted) give
+// orient3d's sign of the rows r. Counts the outcome in exact or refused.
+void check_split_and_fma(bool split_ok, bool fma_ok, double by_split, double by_fma, const std::array<Point, 3>& r,
+                         int& exact, int& refused) {
+    CHECK(split_ok == fma_ok);
+    if (!split_ok) {
+        ++refused;
+        return;
+    }
+    ++exact;
+    CHECK(by_split == by_fma);
+    const int sign = (by_split > 0) - (by_split < 0);
+    CHECK(sign == ref_orient3d(Point{0, 0, 0}, r[0], r[1], r[2]));
+}
+
 TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, and with GMP") {
     // The exact stage's shortcut checks each product by its error term:
     // Dekker's split everywhere, one fma where the processor has one (the
@@ -408,15 +424,7 @@ TEST_CASE("det3_in_doubles: Dekker's and the fused multiply-add's checks agree, 
             double by_split = 0, by_fma = 0;
             const bool split_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_split, false);
             const bool fma_ok = cbr::geom::detail::det3_in_doubles(r[0].data(), r[1].data(), r[2].data(), by_fma, fma);
-            CHECK(split_ok == fma_ok);
-            if (!split_ok) {
-                ++refused;
-                continue;
-            }
-            ++exact;
-            CHECK(by_split == by_fma);
-            const int sign = (by_split > 0) - (by_split < 0);
-            CHECK(sign == ref_orient3d(Point{0, 0, 0}, r[0], r[1], r[2]));
+            check_split_and_fma(split_ok, fma_ok, by_split, by_fma, r, exact, refused);
         }
     }
     CHECK(exact > 400);  // both kinds were met
@@ -446,15 +454,7 @@ TEST_CASE("normal_in_doubles and dot_in_doubles: Dekker's and the fused multiply
             double by_split = 0, by_fma = 0;
             const bool dot_split_ok = cbr::geom::detail::dot_in_doubles(r[2].data(), n_split, by_split, false);
             const bool dot_fma_ok = cbr::geom::detail::dot_in_doubles(r[2].data(), n_split, by_fma, fma);
-            CHECK(dot_split_ok == dot_fma_ok);
-            if (!dot_split_ok) {
-                ++refused;
-                continue;
-            }
-            ++exact;
-            CHECK(by_split == by_fma);
-            const int sign = (by_split > 0) - (by_split < 0);
-            CHECK(sign == ref_orient3d(Point{0, 0, 0}, r[0], r[1], r[2]));
+            check_split_and_fma(dot_split_ok, dot_fma_ok, by_split, by_fma, r, exact, refused);
         }
     }
     CHECK(exact > 400);  // both kinds were met

@@ -8,6 +8,7 @@
 
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/slot_marks.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -44,8 +45,8 @@ private:
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
     std::vector<double> qualities_;  // of ball_ at the vertex's position, in ball_'s order
-    std::vector<std::uint64_t> seen_;  // per vertex: stamp_ when already in neighbours_
-    std::uint64_t stamp_ = 0;
+    mesh::SlotMarks seen_;  // per vertex: kSeen when already in neighbours_
+    static constexpr std::uint8_t kSeen = 1;
 };
 
 // The ball's minimum quality when it is above `floor`; otherwise some value
@@ -119,16 +120,15 @@ bool Smoother::smooth(VertexId v, TetId start) {
     for (TetId t : ball_) changed = changed || c_.changed(t);
     // Nothing changed around v since its last try: it would fail again.
     if (!changed) return false;
-    // The link's vertices once each (a stamp per vertex), then ascending:
+    // The link's vertices once each (a mark per vertex), then ascending:
     // the centroid's sum runs in that order.
-    if (seen_.size() < m_.vertex_count()) seen_.resize(m_.vertex_count(), 0);
-    ++stamp_;
+    seen_.new_round(m_.vertex_count());
     for (TetId t : ball_) {
         if (!c_.in_domain(t)) return false;
         for (int i = 0; i < 4; ++i) {
             const VertexId u = m_.vertex(t, i);
-            if (u == v || seen_[u] == stamp_) continue;
-            seen_[u] = stamp_;
+            if (u == v || seen_.has(u, kSeen)) continue;
+            seen_.set(u, kSeen);
             neighbours_.push_back(u);
         }
     }
