@@ -455,3 +455,62 @@ TEST_CASE("explicit initial cavity: the half of a ball, corrected") {
     m.truncate_vertices(m.vertex_count() - 1);
     CHECK(snapshot(m) == before);
 }
+
+// The correction's sweeps look only at the boundary faces that can act
+// (new ones, and flat visible ones that could not take in the tetrahedron
+// beyond); sweeping the whole boundary each time must give the same
+// insertion, tetrahedron for tetrahedron. Grid points make many cones flat
+// (p coplanar with a boundary face), so faces are taken in, refused, and
+// taken in later.
+TEST_CASE("the correction's sweeps of the faces that can act equal sweeps of the whole boundary") {
+    std::vector<double> grid;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j)
+            for (int k = 0; k < 5; ++k) grid.insert(grid.end(), {double(i), double(j), double(k)});
+    const std::size_t n = grid.size() / 3;
+    std::mt19937_64 rng(11);
+    std::size_t taken_in = 0, compared = 0;
+    for (int round = 0; round < 8; ++round) {
+        cbr::delaunay::Delaunay da, db;
+        REQUIRE(da.insert_points(grid.data(), n).ok);
+        REQUIRE(db.insert_points(grid.data(), n).ok);
+        TetMesh& a = da.mesh_for_update();
+        TetMesh& b = db.mesh_for_update();
+        REQUIRE(snapshot(a) == snapshot(b));
+        std::set<Key3> constraints_a, constraints_b;
+        for (const auto& [t, f] : random_interior_faces(a, 60 + 60 * static_cast<std::size_t>(round), rng)) {
+            mark_constraint(a, t, f, constraints_a);
+            mark_constraint(b, t, f, constraints_b);
+        }
+        cbr::recover::ProtectedInserter incremental, whole;
+        whole.set_whole_sweeps(true);
+        std::uniform_int_distribution<int> half(1, 7);
+        for (int i = 0; i < 100; ++i) {
+            // Half-integer and integer coordinates inside the grid.
+            const double q[3] = {0.5 * half(rng), 0.5 * half(rng), 0.5 * half(rng)};
+            const TetId start = locate(a, q);
+            if (start == kNoTet) continue;
+            const VertexId pa = add_point(a, q);
+            const VertexId pb = add_point(b, q);
+            const ProtectedInsertResult& ra = incremental.insert(a, pa, start);
+            const ProtectedInsertResult& rb = whole.insert(b, pb, start);
+            REQUIRE(ra.ok == rb.ok);
+            CHECK(ra.why == rb.why);
+            CHECK(ra.created == rb.created);
+            CHECK(ra.cavity == rb.cavity);
+            CHECK(ra.removed == rb.removed);
+            CHECK(ra.added == rb.added);
+            if (!ra.ok) {
+                a.truncate_vertices(pa);
+                b.truncate_vertices(pb);
+            }
+            REQUIRE(snapshot(a) == snapshot(b));
+            if (ra.ok) check_after(a, pa, ra, constraints_a);
+            taken_in += ra.added;
+            ++compared;
+        }
+    }
+    MESSAGE(compared << " insertions compared; " << taken_in << " tetrahedra taken in across flat faces");
+    CHECK(compared > 100);
+    CHECK(taken_in > 0);
+}

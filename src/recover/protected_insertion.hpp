@@ -87,6 +87,11 @@ public:
                                                   const std::vector<mesh::TetId>& cavity,
                                                   const BlockedFace& blocked = {}, bool keep_seed = false);
 
+    // Whether each sweep of the correction takes the whole boundary
+    // (false: only the faces that can act, the default; the outcome is the
+    // same, which the test that sets this proves).
+    void set_whole_sweeps(bool whole);
+
     struct Scratch;  // protected_insertion.cpp
 
 private:
