@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,8 +59,11 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
 cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
                                                     cbr::recover::RecoveryStats& stats) {
     const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
+    // The flips may run again from the Delaunay mesh (recovery.cpp,
+    // kFlipRestartShare): rebuild() gives it back, bit for bit.
+    const std::function<void()> delaunay_again = [&mesh] { mesh.delaunay.rebuild(); };
     cbr::recover::RecoveryResult first =
-        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options);
+        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options, delaunay_again);
     if (first.ok || !first.invalid.empty() || !options.retries || !options.deep_flips ||
         options.deepest_flip_budget != 0)
         return first;
@@ -70,7 +74,7 @@ cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::r
         other.unblocking_tries = std::min(other.unblocking_tries, cbr::recover::kRetryUnblockingTries);
         cbr::recover::RecoveryStats other_stats;
         cbr::recover::RecoveryResult again =
-            cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, other_stats, other);
+            cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, other_stats, other, delaunay_again);
         if (again.ok || !again.invalid.empty()) {
             stats = other_stats;
             return again;

@@ -79,7 +79,8 @@ std::uint64_t edge_key(VertexId a, VertexId b) {
 
 class FlipRecovery {
 public:
-    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo) : m_(m), faces_(faces), memo_(memo) {
+    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo, FlipDirection direction)
+        : m_(m), faces_(faces), memo_(memo), direction_(direction) {
         incident_ = mesh::incident_tets(m_);
         for (std::size_t i = 0; i < faces_.size(); ++i) {
             const Triangle& t = faces_.triangle(i);
@@ -148,7 +149,8 @@ private:
 
     bool recover(std::size_t i) {
         budget_ = search_.budget;
-        const Triangle& t = faces_.triangle(i);
+        Triangle t = faces_.triangle(i);
+        if (direction_ == FlipDirection::kReversed) std::swap(t[1], t[2]);
         for (int k = 0; k < 3; ++k)
             if (!recover_edge(t[k], t[(k + 1) % 3])) return false;
         return recover_face(t);
@@ -411,6 +413,7 @@ private:
     mesh::TetMesh& m_;
     const ConstraintFaces& faces_;
     const FlipMemo memo_;
+    const FlipDirection direction_;
     Search search_ = kSearches[0];
     int budget_ = 0;
     std::vector<TetId> incident_;
@@ -446,8 +449,8 @@ private:
 
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo,
-                                          FlipRounds rounds, int deepest_budget) {
-    FlipRecovery flips(m, faces, memo);
+                                          FlipRounds rounds, int deepest_budget, FlipDirection direction) {
+    FlipRecovery flips(m, faces, memo, direction);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
     // repeats while a pass makes progress, a few times, for the faces whose

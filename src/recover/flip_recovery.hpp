@@ -28,6 +28,14 @@ enum class FlipMemo { kOn, kOff };
 // at most of the flips' time on the hard shared surfaces.
 enum class FlipRounds { kAll, kWithoutDeepest };
 
+// Which way a face's edges are walked: as the triangle (a, b, c) lists
+// them (a-b, b-c, c-a; each edge's first crossing looked for from its
+// first end first), or as its reverse (a, c, b) lists them. Searches that
+// fail can still change the mesh, so the order matters; on some nearly
+// cospherical CAD parts the flips recover nearly every face one way and
+// a third of them the other (recovery.cpp, kFlipRestartShare).
+enum class FlipDirection { kAsGiven, kReversed };
+
 // Tries to recover the faces `missing` (indices into `faces`); marks the
 // recovered ones as constraint faces; returns those still missing, in
 // increasing order. `deepest_budget`: edge removals a face in the first
@@ -35,6 +43,7 @@ enum class FlipRounds { kAll, kWithoutDeepest };
 // reach the other mesh states that flips can leave to the later steps.
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn,
-                                          FlipRounds rounds = FlipRounds::kAll, int deepest_budget = 0);
+                                          FlipRounds rounds = FlipRounds::kAll, int deepest_budget = 0,
+                                          FlipDirection direction = FlipDirection::kAsGiven);
 
 }  // namespace cbr::recover

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -76,8 +77,11 @@ inline constexpr int kRetryUnblockingTries = 2;
 // Recovers every triangle of `faces` as a face of m, marking them as
 // constraint faces. Steiner points are appended to m's vertices; ids below
 // the vertex count on entry never change. On failure m may have been
-// modified: the caller restores it.
+// modified: the caller restores it. m must be a Delaunay mesh on entry;
+// `delaunay_again`, when given, makes m that mesh once more (recovery.cpp,
+// kFlipRestartShare: the flips may run again from it).
 RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats,
-                             const RecoveryOptions& options = {});
+                             const RecoveryOptions& options = {},
+                             const std::function<void()>& delaunay_again = {});
 
 }  // namespace cbr::recover
