@@ -65,7 +65,7 @@ struct ProtectedInserter::Scratch {
     std::vector<CavityFace> to_sweep, next_sweep;  // correction_pass()
     mesh::ConeReplacer star;        // replaces the cavity by the star of p
     ProtectedInsertResult result;
-    bool whole_sweeps = false;  // set_whole_sweeps
+    bool full_rounds = false;  // set_full_rounds
 };
 
 namespace {
@@ -329,7 +329,7 @@ void Cavity::remove(TetId t) {
 // cylinder: 7,000 tetrahedra, 35-50 sweeps), and each sweep sorted it.
 Pass Cavity::correction_pass() {
     std::vector<CavityFace>& faces = s_.to_sweep;
-    if (!sweeping_ || s_.whole_sweeps) {
+    if (!sweeping_ || s_.full_rounds) {
         faces = boundary();
         s_.next_sweep.clear();
         sweeping_ = true;
@@ -398,7 +398,7 @@ bool Cavity::nearly_flat(TetId t, int f) const {
 bool Cavity::keep_start_component() {
     // Tetrahedra that joined since the last check each joined across a
     // face of a member: only a removal can split the cavity.
-    if (removed_ == removed_at_component_check_) return false;
+    if (removed_ == removed_at_component_check_ && !s_.full_rounds) return false;
     mesh::SlotMarks& reached = s_.reached;
     constexpr std::uint8_t kReached = 1;
     reached.new_round(m_.slot_count());
@@ -522,7 +522,7 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     return res;
 }
 
-void ProtectedInserter::set_whole_sweeps(bool whole) { scratch_->whole_sweeps = whole; }
+void ProtectedInserter::set_full_rounds(bool full) { scratch_->full_rounds = full; }
 
 const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->result; }
 

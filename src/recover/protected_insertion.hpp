@@ -87,10 +87,11 @@ public:
                                                   const std::vector<mesh::TetId>& cavity,
                                                   const BlockedFace& blocked = {}, bool keep_seed = false);
 
-    // Whether each sweep of the correction takes the whole boundary
-    // (false: only the faces that can act, the default; the outcome is the
-    // same, which the test that sets this proves).
-    void set_whole_sweeps(bool whole);
+    // Whether every round of the correction sweeps the whole boundary and
+    // checks that the cavity is in one piece (false, the default: only the
+    // faces that can act, and the check only after a removal). The outcome
+    // is the same, which the test that sets this proves.
+    void set_full_rounds(bool full);
 
     struct Scratch;  // protected_insertion.cpp
 
