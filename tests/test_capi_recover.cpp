@@ -204,24 +204,11 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
 namespace {
 
 // The shared wildmeshing-upsampled-box turned as tests/bench/rotate_surface.py
-// turns it with seed 3 (the rotation, scale and shift that seed draws,
-// written out; the same operations in the same order, so the same
-// doubles).
+// turns it with seed 3 (cbr::test::turn: the same doubles).
 cbr::test::OffSurface upsampled_box_turned_r3(const std::string& dir) {
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(dir + "/surfaces/wildmeshing-upsampled-box.off", s));
-    const double rotation[3][3] = {{-0.08199866680955697, -0.7349894875293119, 0.6731022744448684},
-                                   {-0.6251865069096083, -0.4880349325263164, -0.6090679241367061},
-                                   {0.7761559445237908, -0.470757217528774, -0.4194872965000836}};
-    const double scale = 5.679653280788985;
-    const double shift[3] = {-4935.290880053457, -5530.0740279168995, 3833.414758588012};
-    for (std::size_t i = 0; i < s.xyz.size(); i += 3) {
-        const double p[3] = {s.xyz[i], s.xyz[i + 1], s.xyz[i + 2]};
-        for (int r = 0; r < 3; ++r) {
-            const double turned = rotation[r][0] * p[0] + rotation[r][1] * p[1] + rotation[r][2] * p[2];
-            s.xyz[i + static_cast<std::size_t>(r)] = scale * turned + shift[r];
-        }
-    }
+    cbr::test::turn(s.xyz, cbr::test::kRotateSurfaceSeed3);
     return s;
 }
 

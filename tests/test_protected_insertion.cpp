@@ -464,10 +464,7 @@ TEST_CASE("explicit initial cavity: the half of a ball, corrected") {
 // (p coplanar with a boundary face), so faces are taken in, refused, and
 // taken in later.
 TEST_CASE("the correction's sweeps of the faces that can act equal full rounds") {
-    std::vector<double> grid;
-    for (int i = 0; i < 5; ++i)
-        for (int j = 0; j < 5; ++j)
-            for (int k = 0; k < 5; ++k) grid.insert(grid.end(), {double(i), double(j), double(k)});
+    const std::vector<double> grid = cbr::test::grid_points(5);
     const std::size_t n = grid.size() / 3;
     std::mt19937_64 rng(11);
     std::size_t taken_in = 0, compared = 0;

@@ -70,7 +70,7 @@ TEST_CASE("recovery on every shared surface") {
 }
 
 // The CAD cylinder turned, scaled and shifted as tests/bench/rotate_surface.py
-// does with seed 1 (the same arithmetic, so the same doubles): its fanned
+// does with seed 1 (cbr::test::turn: the same doubles): its fanned
 // caps are then only nearly planar, and the first intersection point that
 // conforming recovery rounds on one of its missing edges cannot be joined
 // to the chain it extends; another point of the crossing can
@@ -82,19 +82,7 @@ TEST_CASE("recovery of the CAD cylinder turned in space") {
     REQUIRE(!path.empty());
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(path, s));
-    const double rotation[3][3] = {{0.7291814484470931, 0.49710920991254126, -0.4702944276309556},
-                                   {-0.40867983121920404, -0.23489142409215163, -0.8819335657761322},
-                                   {-0.5488854259271619, 0.8352894422343009, 0.03188003915725375}};
-    const double scale = 0.9388809398100537;
-    const double shift[3] = {-94.84375311990932, 284.65550539709506, 542.1537025184375};
-    for (std::size_t i = 0; i < s.xyz.size(); i += 3) {
-        const double p[3] = {s.xyz[i], s.xyz[i + 1], s.xyz[i + 2]};
-        for (int r = 0; r < 3; ++r) {
-            double sum = 0;  // Python's sum(), term by term
-            for (int k = 0; k < 3; ++k) sum += rotation[r][k] * p[k];
-            s.xyz[i + static_cast<std::size_t>(r)] = scale * sum + shift[r];
-        }
-    }
+    cbr::test::turn(s.xyz, cbr::test::kRotateSurfaceSeed1);
     cbr_mesh* m = nullptr;
     REQUIRE(cbr_mesh_create(&m) == CBR_OK);
     REQUIRE(cbr_mesh_insert_points(m, static_cast<std::int64_t>(s.xyz.size() / 3), s.xyz.data()) == CBR_OK);

@@ -860,8 +860,7 @@ TEST_CASE("cbr_mesh_refine: suppressed Steiner points leave the point list") {
 
 TEST_CASE("cbr_mesh_refine: a sliver star that the cavity correction changes is undone, not an internal error") {
     // The shared feeder guide arm turned as tests/bench/rotate_surface.py
-    // turns it with seed 1 (that seed's rotation, scale and shift written
-    // out; the same operations in the same order, so the same doubles).
+    // turns it with seed 1 (cbr::test::turn: the same doubles).
     // Sliver removal chose a ring cavity whose star rated q = 3.5e-27; the
     // insertion's §5.1 correction then took one tetrahedron out and one in,
     // and cbr_mesh_refine failed with CBR_ERR_INTERNAL ("the cavity
@@ -869,18 +868,7 @@ TEST_CASE("cbr_mesh_refine: a sliver star that the cavity correction changes is 
     // again and the sliver left as it is.
     cbr::test::OffSurface off;
     if (!shared_surface("thingiverse-feeder-guide-arm", off)) return;
-    const double rotation[3][3] = {{0.7291814484470931, 0.49710920991254126, -0.4702944276309556},
-                                   {-0.40867983121920404, -0.23489142409215163, -0.8819335657761322},
-                                   {-0.5488854259271619, 0.8352894422343009, 0.03188003915725375}};
-    const double scale = 0.9388809398100537;
-    const double shift[3] = {-94.84375311990932, 284.65550539709506, 542.1537025184375};
-    for (std::size_t i = 0; i < off.xyz.size(); i += 3) {
-        const double p[3] = {off.xyz[i], off.xyz[i + 1], off.xyz[i + 2]};
-        for (int r = 0; r < 3; ++r) {
-            const double turned = rotation[r][0] * p[0] + rotation[r][1] * p[1] + rotation[r][2] * p[2];
-            off.xyz[i + static_cast<std::size_t>(r)] = scale * turned + shift[r];
-        }
-    }
+    cbr::test::turn(off.xyz, cbr::test::kRotateSurfaceSeed1);
     cbr_mesh* m = nullptr;
     REQUIRE(cbr_mesh_create(&m) == CBR_OK);
     REQUIRE(cbr_mesh_insert_points(m, static_cast<std::int64_t>(off.xyz.size() / 3), off.xyz.data()) == CBR_OK);

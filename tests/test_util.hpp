@@ -93,6 +93,36 @@ struct OffSurface {
     std::vector<std::int64_t> tris;
 };
 
+// A turn, a scale and a shift as tests/bench/rotate_surface.py applies
+// them to every point p: coordinate r becomes scale * (rotation[r] . p) +
+// shift[r], the dot product summed left to right. A seed's numbers written
+// out (rotate_surface.transform(seed)) give the script's doubles.
+struct Turn {
+    double rotation[3][3];
+    double scale;
+    double shift[3];
+};
+inline constexpr Turn kRotateSurfaceSeed1{{{0.7291814484470931, 0.49710920991254126, -0.4702944276309556},
+                                           {-0.40867983121920404, -0.23489142409215163, -0.8819335657761322},
+                                           {-0.5488854259271619, 0.8352894422343009, 0.03188003915725375}},
+                                          0.9388809398100537,
+                                          {-94.84375311990932, 284.65550539709506, 542.1537025184375}};
+inline constexpr Turn kRotateSurfaceSeed3{{{-0.08199866680955697, -0.7349894875293119, 0.6731022744448684},
+                                           {-0.6251865069096083, -0.4880349325263164, -0.6090679241367061},
+                                           {0.7761559445237908, -0.470757217528774, -0.4194872965000836}},
+                                          5.679653280788985,
+                                          {-4935.290880053457, -5530.0740279168995, 3833.414758588012}};
+
+inline void turn(std::vector<double>& xyz, const Turn& t) {
+    for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
+        const double p[3] = {xyz[i], xyz[i + 1], xyz[i + 2]};
+        for (int r = 0; r < 3; ++r) {
+            const double dot = t.rotation[r][0] * p[0] + t.rotation[r][1] * p[1] + t.rotation[r][2] * p[2];
+            xyz[i + static_cast<std::size_t>(r)] = t.scale * dot + t.shift[r];
+        }
+    }
+}
+
 // Reads the shared data's OFF files (triangles only; '#' comment lines
 // right after the OFF line, as in tests/data/io).
 inline bool read_off(const std::string& path, OffSurface& s) {

@@ -49,6 +49,9 @@ namespace {
 struct CavityFace {
     TetId t;
     int f;
+    // boundary()'s order: member id, then face.
+    bool operator<(const CavityFace& o) const { return t != o.t ? t < o.t : f < o.f; }
+    bool operator==(const CavityFace& o) const { return t == o.t && f == o.f; }
 };
 
 }  // namespace
@@ -330,18 +333,15 @@ void Cavity::remove(TetId t) {
 Pass Cavity::correction_pass() {
     std::vector<CavityFace>& faces = s_.to_sweep;
     if (!sweeping_ || s_.full_rounds) {
-        faces = boundary();
-        s_.next_sweep.clear();
+        boundary();
+        faces.swap(s_.faces);
         sweeping_ = true;
     } else {
         faces.swap(s_.next_sweep);
-        s_.next_sweep.clear();
-        std::sort(faces.begin(), faces.end(),
-                  [](const CavityFace& x, const CavityFace& y) { return x.t != y.t ? x.t < y.t : x.f < y.f; });
-        faces.erase(std::unique(faces.begin(), faces.end(),
-                                [](const CavityFace& x, const CavityFace& y) { return x.t == y.t && x.f == y.f; }),
-                    faces.end());
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
     }
+    s_.next_sweep.clear();
     bool changed = false;
     for (const CavityFace& b : faces) {
         const TetId n = across(b.t, b.f);
