@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -456,14 +457,20 @@ TEST_CASE("explicit initial cavity: the half of a ball, corrected") {
     CHECK(snapshot(m) == before);
 }
 
+namespace {
+
+// Where the comparison below inserts: a point q, or false to skip.
+using PointMaker = std::function<bool(const TetMesh& m, std::mt19937_64& rng, Point& q)>;
+
 // The correction's sweeps look only at the boundary faces that can act
 // (new ones, and flat visible ones that could not take in the tetrahedron
 // beyond), and check the cavity's connectivity only after a removal; full
 // rounds (the whole boundary, the check every time) must give the same
-// insertion, tetrahedron for tetrahedron. Grid points make many cones flat
-// (p coplanar with a boundary face), so faces are taken in, refused, and
-// taken in later.
-TEST_CASE("the correction's sweeps of the faces that can act equal full rounds") {
+// insertion, tetrahedron for tetrahedron: 8 rounds of 100 insertions at
+// `make`'s points into the Delaunay mesh of 5x5x5 grid points, with more
+// random constraint faces each round. Returns the number of tetrahedra
+// taken in across flat faces.
+std::size_t compare_sweeps_with_full_rounds(const PointMaker& make) {
     const std::vector<double> grid = cbr::test::grid_points(5);
     const std::size_t n = grid.size() / 3;
     std::mt19937_64 rng(11);
@@ -482,14 +489,13 @@ TEST_CASE("the correction's sweeps of the faces that can act equal full rounds")
         }
         cbr::recover::ProtectedInserter incremental, full;
         full.set_full_rounds(true);
-        std::uniform_int_distribution<int> half(1, 7);
         for (int i = 0; i < 100; ++i) {
-            // Half-integer and integer coordinates inside the grid.
-            const double q[3] = {0.5 * half(rng), 0.5 * half(rng), 0.5 * half(rng)};
-            const TetId start = locate(a, q);
+            Point q;
+            if (!make(a, rng, q)) continue;
+            const TetId start = locate(a, q.data());
             if (start == kNoTet) continue;
-            const VertexId pa = add_point(a, q);
-            const VertexId pb = add_point(b, q);
+            const VertexId pa = add_point(a, q.data());
+            const VertexId pb = add_point(b, q.data());
             const ProtectedInsertResult& ra = incremental.insert(a, pa, start);
             const ProtectedInsertResult& rb = full.insert(b, pb, start);
             REQUIRE(ra.ok == rb.ok);
@@ -510,5 +516,44 @@ TEST_CASE("the correction's sweeps of the faces that can act equal full rounds")
     }
     MESSAGE(compared << " insertions compared; " << taken_in << " tetrahedra taken in across flat faces");
     CHECK(compared > 100);
+    return taken_in;
+}
+
+}  // namespace
+
+// Half-integer and integer coordinates inside the grid: many cones are
+// exactly flat (p on the plane of a boundary face), so faces are taken
+// in, refused, and taken in later.
+TEST_CASE("the correction's sweeps of the faces that can act equal full rounds") {
+    std::uniform_int_distribution<int> half(1, 7);
+    const std::size_t taken_in = compare_sweeps_with_full_rounds([&](const TetMesh&, std::mt19937_64& rng, Point& q) {
+        q = {0.5 * half(rng), 0.5 * half(rng), 0.5 * half(rng)};
+        return true;
+    });
+    CHECK(taken_in > 0);
+}
+
+// Points rounded onto the plane of a mesh face (weights 1/3, 1/5, 7/15 of
+// its corners, in doubles): off the grid's slanted planes by a rounding
+// error, so their cones there are flat to within rounding yet visible
+// (nearly_flat with a positive sign). Such a face that cannot take in the
+// tetrahedron beyond yet may do so after a later sweep has shrunk the
+// cavity; the sweeps must carry it over.
+TEST_CASE("the correction's sweeps equal full rounds at points rounded onto slanted faces") {
+    const std::size_t taken_in = compare_sweeps_with_full_rounds([](const TetMesh& m, std::mt19937_64& rng, Point& q) {
+        const auto faces = random_interior_faces(m, 1, rng);
+        if (faces.empty()) return false;
+        const auto [t, f] = faces.front();
+        const double* c[3];
+        for (int k = 0; k < 3; ++k) c[k] = m.point(m.vertex(t, kFaceVertices[f][k]));
+        // An axis-parallel face would hold q exactly.
+        bool slanted = true;
+        for (int axis = 0; axis < 3; ++axis)
+            slanted = slanted && !(c[0][axis] == c[1][axis] && c[1][axis] == c[2][axis]);
+        if (!slanted) return false;
+        for (int axis = 0; axis < 3; ++axis)
+            q[static_cast<std::size_t>(axis)] = c[0][axis] / 3 + c[1][axis] / 5 + c[2][axis] * 7 / 15;
+        return true;
+    });
     CHECK(taken_in > 0);
 }
