@@ -866,6 +866,84 @@ TEST_CASE("edge removal on hand-built shells of 3 to 8 tetrahedra") {
     }
 }
 
+namespace {
+
+// A measure unlike tet_quality, for the objective test: shortest over
+// longest edge, -inf when abcd is not positively oriented.
+double edge_ratio(const double* a, const double* b, const double* c, const double* d) {
+    if (cbr::geom::orient3d(a, b, c, d) <= 0) return -std::numeric_limits<double>::infinity();
+    const double* p[4] = {a, b, c, d};
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+            double l2 = 0;
+            for (int k = 0; k < 3; ++k) l2 += (p[i][k] - p[j][k]) * (p[i][k] - p[j][k]);
+            shortest = std::min(shortest, l2);
+            longest = std::max(longest, l2);
+        }
+    return std::sqrt(shortest / longest);
+}
+
+// The worst `measure` over the tetrahedra a ring triangulation cones.
+double cone_minimum(const TetMesh& m, const Shell& s, const std::vector<RingTriangle>& tris,
+                    double (*measure)(const double*, const double*, const double*, const double*)) {
+    double q = std::numeric_limits<double>::infinity();
+    for (const RingTriangle& t : tris) {
+        const double* a = m.point(s.ring[static_cast<std::size_t>(t[0])]);
+        const double* b = m.point(s.ring[static_cast<std::size_t>(t[1])]);
+        const double* c = m.point(s.ring[static_cast<std::size_t>(t[2])]);
+        q = std::min({q, measure(a, b, c, m.point(1)), measure(a, c, b, m.point(0))});
+    }
+    return q;
+}
+
+}  // namespace
+
+// The objective of best_ring_triangulation (refinement's quality flips use
+// the radius ratio and the bar a flip must beat as the floor): against
+// every triangulation of non-planar rings, it finds the best worst value
+// of the measure it is given, and reports none exactly when no
+// triangulation is strictly above the floor.
+TEST_CASE("best_ring_triangulation maximizes the objective's measure, only above its floor") {
+    int differs_from_default = 0, above = 0;
+    for (int n = 4; n <= 8; ++n)
+        for (std::uint64_t seed = 0; seed < 12; ++seed) {
+            CAPTURE(n);
+            CAPTURE(seed);
+            const auto h = cbr::test::random_points(3, seed + 100, -0.9, 0.9);
+            const TetMesh m = shell_mesh(n, [](int) { return 1.0; }, [&](int i) { return h[static_cast<std::size_t>(i)]; });
+            Shell s;
+            REQUIRE(shell(m, 0, 1, 0, s));
+            double best = -std::numeric_limits<double>::infinity();
+            for (const auto& tris : all_triangulations(n)) best = std::max(best, cone_minimum(m, s, tris, edge_ratio));
+            std::vector<RingTriangle> tris;
+            double got = 0;
+            const bool found = best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio});
+            CHECK(found == (best > -std::numeric_limits<double>::infinity()));
+            CHECK(got == best);
+            if (!found) continue;
+            CHECK(cone_minimum(m, s, tris, edge_ratio) == best);
+            std::vector<RingTriangle> by_default;
+            REQUIRE(best_ring_triangulation(m, 0, 1, s, by_default));
+            differs_from_default += cone_minimum(m, s, by_default, edge_ratio) < best;
+            // Floors just below, at, and above the best.
+            const double below = std::nextafter(best, 0.0);
+            CHECK(best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio, below}));
+            CHECK(got == best);
+            CHECK(cone_minimum(m, s, tris, edge_ratio) == best);
+            ++above;
+            for (const double floor : {best, 2 * best}) {
+                CHECK_FALSE(best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio, floor}));
+                CHECK(tris.empty());
+                CHECK(got == -std::numeric_limits<double>::infinity());
+            }
+        }
+    MESSAGE(above << " rings with a valid triangulation; the default measure's choice is worse in edge ratio on "
+                  << differs_from_default);
+    CHECK(above > 10);
+    CHECK(differs_from_default > 0);
+}
+
 // --- Schönhardt -------------------------------------------------------------
 
 namespace {

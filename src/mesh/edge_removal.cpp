@@ -17,8 +17,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 class RingScorer {
 public:
     // `finite`: storage for the shell's finite vertices (reused).
-    RingScorer(const TetMesh& m, VertexId u, VertexId v, const Shell& s, std::vector<VertexId>& finite)
-        : m_(m), u_(u), v_(v), ring_(s.ring), finite_(finite) {
+    RingScorer(const TetMesh& m, VertexId u, VertexId v, const Shell& s, std::vector<VertexId>& finite,
+               const RingObjective& objective)
+        : m_(m), u_(u), v_(v), ring_(s.ring), finite_(finite), measure_(objective.measure) {
         finite_.clear();
         for (VertexId x : ring_)
             if (x != kGhostVertex) finite_.push_back(x);
@@ -56,7 +57,7 @@ private:
         const VertexId t[4] = {a, b, c, d};
         for (int g = 0; g < 4; ++g)
             if (t[g] == kGhostVertex) return ghost(t, g);
-        return tet_quality(m_.point(a), m_.point(b), m_.point(c), m_.point(d));
+        return measure_(m_.point(a), m_.point(b), m_.point(c), m_.point(d));
     }
 
     // A ghost is neutral (+inf) when its hull face has every finite vertex
@@ -84,6 +85,7 @@ private:
     VertexId u_, v_;
     const std::vector<VertexId>& ring_;
     std::vector<VertexId>& finite_;
+    double (*measure_)(const double*, const double*, const double*, const double*);
 };
 
 // best(i, j): the best worst-quality over triangulations of the sub-polygon
@@ -142,12 +144,14 @@ bool triangulable(RingDp& dp, const RingScorer& score) {
     return ok(0, n - 1);
 }
 
-void solve(RingDp& dp, const RingScorer& score) {
+// With a floor, a sub-polygon whose best is not above it counts as -inf:
+// every polygon that contains it then skips that apex without a score.
+void solve(RingDp& dp, const RingScorer& score, double floor) {
     const int n = static_cast<int>(dp.n);
     for (int len = 2; len < n; ++len) {
         for (int i = 0; i + len < n; ++i) {
             const int j = i + len;
-            double best = -kInf;
+            double best = floor;
             for (int k = i + 1; k < j; ++k) {
                 double q = std::min(dp.at(i, k), dp.at(k, j));
                 if (q <= best) continue;  // cannot beat the best so far
@@ -157,7 +161,7 @@ void solve(RingDp& dp, const RingScorer& score) {
                     dp.apex(i, j) = k;
                 }
             }
-            dp.at(i, j) = best;
+            dp.at(i, j) = dp.apex(i, j) < 0 ? -kInf : best;
         }
     }
 }
@@ -204,17 +208,25 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
 
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                              std::vector<RingTriangle>& triangles, double* min_quality) {
+    return best_ring_triangulation(m, u, v, shell, triangles, min_quality, RingObjective{});
+}
+
+bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                             std::vector<RingTriangle>& triangles, double* min_quality,
+                             const RingObjective& objective) {
     triangles.clear();
+    if (min_quality) *min_quality = -kInf;
     if (shell.size() < 3) return false;
     RingDp& dp = thread_ring_dp();
     dp.n = shell.size();
-    const RingScorer score(m, u, v, shell, dp.finite);
-    if (!triangulable(dp, score)) {
-        if (min_quality) *min_quality = -kInf;
-        return false;
-    }
+    const RingScorer score(m, u, v, shell, dp.finite, objective);
+    // Without a floor, the sign-only test first (most rings of recovery's
+    // nested searches have no valid triangulation at all); with one, the
+    // floor drops invalid rings as fast, and the test would repeat the
+    // signs of every valid one.
+    if (objective.floor == -kInf && !triangulable(dp, score)) return false;
     dp.reset(shell.size());
-    solve(dp, score);
+    solve(dp, score, objective.floor);
     const double best = dp.at(0, static_cast<int>(shell.size()) - 1);
     if (min_quality) *min_quality = best;
     if (best == -kInf) return false;

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "mesh/ball_shell.hpp"
@@ -94,6 +95,23 @@ FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& shell, c
 FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                            const std::vector<RingTriangle>& triangles, std::vector<TetId>* created = nullptr);
 
+// Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
+// lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when
+// orient3d(a, b, c, d) > 0 (exact), -infinity otherwise.
+double tet_quality(const double* a, const double* b, const double* c, const double* d);
+
+// What best_ring_triangulation maximizes: the minimum of `measure` over the
+// finite tetrahedra a triangulation cones (a measure is -infinity for a
+// tetrahedron that is not positively oriented, exact), counting only
+// triangulations whose minimum is strictly above `floor`. A caller that
+// will refuse anything not above a bar gives it as the floor: every
+// sub-polygon whose best falls to it is dropped at once, so a ring that
+// cannot beat the bar costs a fraction of the full search.
+struct RingObjective {
+    double (*measure)(const double*, const double*, const double*, const double*) = tet_quality;
+    double floor = -std::numeric_limits<double>::infinity();
+};
+
 // The triangulation of the ring that remove_edge would use (empty when
 // none is valid), and its minimum quality. Every finite tetrahedron it
 // cones, (ri, rj, rk, v) and (ri, rk, rj, u) for a triangle (i, j, k), is
@@ -104,10 +122,10 @@ std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, 
 // The same into `triangles` (its storage reused); false when none is valid.
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                              std::vector<RingTriangle>& triangles, double* min_quality = nullptr);
-
-// Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
-// lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when
-// orient3d(a, b, c, d) > 0 (exact), -infinity otherwise.
-double tet_quality(const double* a, const double* b, const double* c, const double* d);
+// The triangulation that maximizes `objective` (false when none is above
+// its floor), and its minimum measure.
+bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                             std::vector<RingTriangle>& triangles, double* min_quality,
+                             const RingObjective& objective);
 
 }  // namespace cbr::mesh

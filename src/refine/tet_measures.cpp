@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geom/predicates.hpp"
+
 namespace cbr::refine {
 namespace {
 
@@ -72,6 +74,11 @@ double radius_ratio(const double* a, const double* b, const double* c, const dou
     }
     if (!std::isfinite(q)) return 0;
     return std::clamp(q, 0.0, 1.0);
+}
+
+double oriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {
+    if (geom::orient3d(a, b, c, d) <= 0) return -std::numeric_limits<double>::infinity();
+    return radius_ratio(a, b, c, d);
 }
 
 bool dihedral_angles(const double* a, const double* b, const double* c, const double* d,

@@ -30,6 +30,11 @@ inline double radius_ratio(const mesh::TetMesh& m, mesh::TetId t) {
     return radius_ratio(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
 }
 
+// The radius ratio of abcd when it is positively oriented (exact), else
+// -infinity: the measure quality flips maximize over ring triangulations
+// (mesh::RingObjective).
+double oriented_radius_ratio(const double* a, const double* b, const double* c, const double* d);
+
 // The six edges of a tetrahedron as corner slots, each followed by the two
 // other corners: {i, j, k, l} is edge ij, between faces ijk and ijl.
 inline constexpr std::array<std::array<int, 4>, 6> kTetEdges = {
