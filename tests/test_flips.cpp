@@ -900,12 +900,20 @@ double cone_minimum(const TetMesh& m, const Shell& s, const std::vector<RingTria
 }  // namespace
 
 // The objective of best_ring_triangulation (refinement's quality flips use
-// the radius ratio and the bar a flip must beat as the floor): against
-// every triangulation of non-planar rings, it finds the best worst value
-// of the measure it is given, and reports none exactly when no
-// triangulation is strictly above the floor.
-TEST_CASE("best_ring_triangulation maximizes the objective's measure, only above its floor") {
-    int differs_from_default = 0, above = 0;
+// the radius ratio, the bar a flip must beat as the floor, and the size
+// bound on chords): against every triangulation of non-planar rings, it
+// finds the best worst value of the measure it is given, among the
+// triangulations whose chords it allows, and reports none exactly when no
+// such triangulation is strictly above the floor.
+TEST_CASE("best_ring_triangulation maximizes the objective's measure, only above its floor, with allowed chords") {
+    const auto by_edge_ratio = [](double floor) {
+        RingObjective o;
+        o.measure = edge_ratio;
+        o.floor = floor;
+        return o;
+    };
+    const double none = -std::numeric_limits<double>::infinity();
+    int differs_from_default = 0, above = 0, chord_mattered = 0;
     for (int n = 4; n <= 8; ++n)
         for (std::uint64_t seed = 0; seed < 12; ++seed) {
             CAPTURE(n);
@@ -914,12 +922,12 @@ TEST_CASE("best_ring_triangulation maximizes the objective's measure, only above
             const TetMesh m = shell_mesh(n, [](int) { return 1.0; }, [&](int i) { return h[static_cast<std::size_t>(i)]; });
             Shell s;
             REQUIRE(shell(m, 0, 1, 0, s));
-            double best = -std::numeric_limits<double>::infinity();
+            double best = none;
             for (const auto& tris : all_triangulations(n)) best = std::max(best, cone_minimum(m, s, tris, edge_ratio));
             std::vector<RingTriangle> tris;
             double got = 0;
-            const bool found = best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio});
-            CHECK(found == (best > -std::numeric_limits<double>::infinity()));
+            const bool found = best_ring_triangulation(m, 0, 1, s, tris, &got, by_edge_ratio(none));
+            CHECK(found == (best > none));
             CHECK(got == best);
             if (!found) continue;
             CHECK(cone_minimum(m, s, tris, edge_ratio) == best);
@@ -927,21 +935,59 @@ TEST_CASE("best_ring_triangulation maximizes the objective's measure, only above
             REQUIRE(best_ring_triangulation(m, 0, 1, s, by_default));
             differs_from_default += cone_minimum(m, s, by_default, edge_ratio) < best;
             // Floors just below, at, and above the best.
-            const double below = std::nextafter(best, 0.0);
-            CHECK(best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio, below}));
+            CHECK(best_ring_triangulation(m, 0, 1, s, tris, &got, by_edge_ratio(std::nextafter(best, 0.0))));
             CHECK(got == best);
             CHECK(cone_minimum(m, s, tris, edge_ratio) == best);
+            const std::vector<RingTriangle> best_tris = tris;
             ++above;
             for (const double floor : {best, 2 * best}) {
-                CHECK_FALSE(best_ring_triangulation(m, 0, 1, s, tris, &got, {edge_ratio, floor}));
+                CHECK_FALSE(best_ring_triangulation(m, 0, 1, s, tris, &got, by_edge_ratio(floor)));
                 CHECK(tris.empty());
-                CHECK(got == -std::numeric_limits<double>::infinity());
+                CHECK(got == none);
             }
+            // A predicate that refuses the ring's sides changes nothing: they
+            // are edges already, not chords.
+            RingObjective sides_refused = by_edge_ratio(none);
+            sides_refused.chord_allowed = [&](VertexId x, VertexId y) {
+                for (int k = 0; k < n; ++k)
+                    if (std::minmax(x, y) == std::minmax(s.ring[static_cast<std::size_t>(k)],
+                                                         s.ring[static_cast<std::size_t>((k + 1) % n)]))
+                        return false;
+                return true;
+            };
+            CHECK(best_ring_triangulation(m, 0, 1, s, tris, &got, sides_refused));
+            CHECK(got == best);
+            // Each chord of the best triangulation refused in turn: the best
+            // of the triangulations without it (or none).
+            for (const RingTriangle& t : best_tris)
+                for (int e = 0; e < 3; ++e) {
+                    const int i = std::min(t[e], t[(e + 1) % 3]), j = std::max(t[e], t[(e + 1) % 3]);
+                    if (j - i == 1 || (i == 0 && j == n - 1)) continue;  // a side of the ring
+                    const VertexId a = s.ring[static_cast<std::size_t>(i)], b = s.ring[static_cast<std::size_t>(j)];
+                    const auto uses_chord = [&](const std::vector<RingTriangle>& candidate) {
+                        for (const RingTriangle& x : candidate)
+                            for (int k = 0; k < 3; ++k)
+                                if (std::minmax(x[k], x[(k + 1) % 3]) == std::minmax(i, j)) return true;
+                        return false;
+                    };
+                    double best_without = none;
+                    for (const auto& candidate : all_triangulations(n))
+                        if (!uses_chord(candidate)) best_without = std::max(best_without, cone_minimum(m, s, candidate, edge_ratio));
+                    RingObjective refusing = by_edge_ratio(none);
+                    refusing.chord_allowed = [&](VertexId x, VertexId y) { return std::minmax(x, y) != std::minmax(a, b); };
+                    std::vector<RingTriangle> without;
+                    CHECK(best_ring_triangulation(m, 0, 1, s, without, &got, refusing) == (best_without > none));
+                    CHECK(got == best_without);
+                    CHECK_FALSE(uses_chord(without));
+                    if (!without.empty()) CHECK(cone_minimum(m, s, without, edge_ratio) == best_without);
+                    chord_mattered += best_without < best;
+                }
         }
     MESSAGE(above << " rings with a valid triangulation; the default measure's choice is worse in edge ratio on "
-                  << differs_from_default);
+                  << differs_from_default << "; a refused chord lowered the best " << chord_mattered << " times");
     CHECK(above > 10);
     CHECK(differs_from_default > 0);
+    CHECK(chord_mattered > 0);
 }
 
 // --- Schönhardt -------------------------------------------------------------

@@ -146,12 +146,19 @@ bool triangulable(RingDp& dp, const RingScorer& score) {
 
 // With a floor, a sub-polygon whose best is not above it counts as -inf:
 // every polygon that contains it then skips that apex without a score.
-void solve(RingDp& dp, const RingScorer& score, double floor) {
+// Each chord (i, j) closes exactly one sub-polygon, so a chord refused by
+// `chord_allowed` drops exactly the triangulations that use it.
+void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, const Shell& shell) {
     const int n = static_cast<int>(dp.n);
     for (int len = 2; len < n; ++len) {
         for (int i = 0; i + len < n; ++i) {
             const int j = i + len;
-            double best = floor;
+            if (len < n - 1 && objective.chord_allowed &&
+                !objective.chord_allowed(shell.ring[static_cast<std::size_t>(i)], shell.ring[static_cast<std::size_t>(j)])) {
+                dp.at(i, j) = -kInf;
+                continue;
+            }
+            double best = objective.floor;
             for (int k = i + 1; k < j; ++k) {
                 double q = std::min(dp.at(i, k), dp.at(k, j));
                 if (q <= best) continue;  // cannot beat the best so far
@@ -226,7 +233,7 @@ bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const She
     // signs of every valid one.
     if (objective.floor == -kInf && !triangulable(dp, score)) return false;
     dp.reset(shell.size());
-    solve(dp, score, objective.floor);
+    solve(dp, score, objective, shell);
     const double best = dp.at(0, static_cast<int>(shell.size()) - 1);
     if (min_quality) *min_quality = best;
     if (best == -kInf) return false;

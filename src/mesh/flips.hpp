@@ -107,9 +107,12 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
 // will refuse anything not above a bar gives it as the floor: every
 // sub-polygon whose best falls to it is dropped at once, so a ring that
 // cannot beat the bar costs a fraction of the full search.
+// With `chord_allowed`, only triangulations whose every chord (a new
+// edge between two ring vertices that are not neighbours) it allows.
 struct RingObjective {
     double (*measure)(const double*, const double*, const double*, const double*) = tet_quality;
     double floor = -std::numeric_limits<double>::infinity();
+    std::function<bool(VertexId, VertexId)> chord_allowed;
 };
 
 // The triangulation of the ring that remove_edge would use (empty when

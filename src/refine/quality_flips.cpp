@@ -80,6 +80,16 @@ private:
     // remove_edge's scratch, kept across calls.
     mesh::Shell shell_;
     std::vector<mesh::RingTriangle> triangles_;
+    // What remove_edge asks of a ring triangulation: the best worst radius
+    // ratio, the measure a flip is judged by, searched only above the bar
+    // it must beat (floor, set per shell): most shells cannot beat it
+    // (igea: 146 thousand of a million triangulable shells flip in the
+    // first pass, 14 thousand of 670 thousand in the third), and the
+    // floor ends their search early. The chords are new edges: the size
+    // bound applies to them (the ring's sides are edges already, whatever
+    // their length).
+    mesh::RingObjective objective_{oriented_radius_ratio, 0,
+                                   [this](VertexId a, VertexId b) { return c_.edge_within_size(a, b); }};
 };
 
 // Edge removal of uv (Definition 5.8, the shell transformation) with the
@@ -103,24 +113,9 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
         if (!c_.in_domain(x) || c_.region(x) != region) return false;
         old_min = std::min(old_min, q(x));
     }
-    // The triangulation with the best worst radius ratio, searched only
-    // above the bar it must beat: most shells cannot (igea: 146 thousand
-    // of a million triangulable shells flip in the first pass, 14 of 670
-    // thousand in the third), and the floor ends their search early.
     std::vector<mesh::RingTriangle>& tris = triangles_;
-    if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr, {oriented_radius_ratio, old_min * kGain}))
-        return false;
-    // Only the chords of the ring are new edges: the size bound applies to
-    // them (the ring's sides are edges already, whatever their length).
-    const int n = static_cast<int>(s.size());
-    const auto chord_within_size = [&](int i, int j) {
-        const int gap = (j - i + n) % n;
-        if (gap == 1 || gap == n - 1) return true;
-        return c_.edge_within_size(s.ring[static_cast<std::size_t>(i)], s.ring[static_cast<std::size_t>(j)]);
-    };
-    for (const mesh::RingTriangle& tri : tris)
-        if (!chord_within_size(tri[0], tri[1]) || !chord_within_size(tri[1], tri[2]) || !chord_within_size(tri[0], tri[2]))
-            return false;
+    objective_.floor = old_min * kGain;
+    if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr, objective_)) return false;
     std::vector<TetId> created;
     if (mesh::transform_shell(m_, u, v, s, tris, &created) != mesh::FlipResult::kDone) return false;
     adopt(created, region);
