@@ -147,7 +147,8 @@ bool triangulable(RingDp& dp, const RingScorer& score) {
 // With a floor, a sub-polygon whose best is not above it counts as -inf:
 // every polygon that contains it then skips that apex without a score.
 // Each chord (i, j) closes exactly one sub-polygon, so a chord refused by
-// `chord_allowed` drops exactly the triangulations that use it.
+// `chord_allowed` drops exactly the triangulations that use it (the root's
+// closing edge (0, n - 1) is a side of the ring, never asked about).
 void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, const Shell& shell) {
     const int n = static_cast<int>(dp.n);
     for (int len = 2; len < n; ++len) {

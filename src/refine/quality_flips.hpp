@@ -2,6 +2,9 @@
 // "optimize the mesh with local ... topological operations"): 2-3 flips
 // and edge removals (3-2, 4-4 and larger shells, mesh/flips.hpp), each done
 // only when the smallest radius ratio of the tetrahedra it replaces grows.
+// An edge removal takes the ring triangulation with the best smallest
+// radius ratio among those whose chords keep the size bound
+// (mesh::RingObjective).
 // A constraint face is never removed (no face through a surface edge is
 // touched; replace_tets refuses it anyway), the exterior is not changed,
 // and no new edge breaks the size bound.
