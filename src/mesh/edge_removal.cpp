@@ -154,11 +154,6 @@ void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, 
     for (int len = 2; len < n; ++len) {
         for (int i = 0; i + len < n; ++i) {
             const int j = i + len;
-            if (len < n - 1 && objective.chord_allowed &&
-                !objective.chord_allowed(shell.ring[static_cast<std::size_t>(i)], shell.ring[static_cast<std::size_t>(j)])) {
-                dp.at(i, j) = -kInf;
-                continue;
-            }
             double best = objective.floor;
             for (int k = i + 1; k < j; ++k) {
                 double q = std::min(dp.at(i, k), dp.at(k, j));
@@ -169,6 +164,11 @@ void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, 
                     dp.apex(i, j) = k;
                 }
             }
+            // Asked only of a sub-polygon that has a triangulation above the
+            // floor (with a floor, most have none).
+            if (dp.apex(i, j) >= 0 && len < n - 1 && objective.chord_allowed &&
+                !objective.chord_allowed(shell.ring[static_cast<std::size_t>(i)], shell.ring[static_cast<std::size_t>(j)]))
+                dp.apex(i, j) = -1;
             dp.at(i, j) = dp.apex(i, j) < 0 ? -kInf : best;
         }
     }
