@@ -151,10 +151,12 @@ bool triangulable(RingDp& dp, const RingScorer& score) {
 // closing edge (0, n - 1) is a side of the ring, never asked about).
 void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, const Shell& shell) {
     const int n = static_cast<int>(dp.n);
+    const double floor = objective.floor;
+    const bool chords_checked = static_cast<bool>(objective.chord_allowed);
     for (int len = 2; len < n; ++len) {
         for (int i = 0; i + len < n; ++i) {
             const int j = i + len;
-            double best = objective.floor;
+            double best = floor;
             for (int k = i + 1; k < j; ++k) {
                 double q = std::min(dp.at(i, k), dp.at(k, j));
                 if (q <= best) continue;  // cannot beat the best so far
@@ -166,7 +168,7 @@ void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, 
             }
             // Asked only of a sub-polygon that has a triangulation above the
             // floor (with a floor, most have none).
-            if (dp.apex(i, j) >= 0 && len < n - 1 && objective.chord_allowed &&
+            if (chords_checked && len < n - 1 && dp.apex(i, j) >= 0 &&
                 !objective.chord_allowed(shell.ring[static_cast<std::size_t>(i)], shell.ring[static_cast<std::size_t>(j)]))
                 dp.apex(i, j) = -1;
             dp.at(i, j) = dp.apex(i, j) < 0 ? -kInf : best;
@@ -216,7 +218,8 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
 
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                              std::vector<RingTriangle>& triangles, double* min_quality) {
-    return best_ring_triangulation(m, u, v, shell, triangles, min_quality, RingObjective{});
+    static const RingObjective shape;  // tet_quality, no floor, every chord
+    return best_ring_triangulation(m, u, v, shell, triangles, min_quality, shape);
 }
 
 bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
