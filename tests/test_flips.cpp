@@ -884,7 +884,8 @@ double edge_ratio(const double* a, const double* b, const double* c, const doubl
     return std::sqrt(shortest / longest);
 }
 
-// The worst `measure` over the tetrahedra a ring triangulation cones.
+// The worst `measure` over the tetrahedra a ring triangulation of shell_mesh's
+// edge (u = 0, v = 1) cones: (a, b, c, v) and (a, c, b, u) per triangle.
 double cone_minimum(const TetMesh& m, const Shell& s, const std::vector<RingTriangle>& tris,
                     double (*measure)(const double*, const double*, const double*, const double*)) {
     double q = std::numeric_limits<double>::infinity();
