@@ -678,6 +678,21 @@ TEST_CASE("refine: a flat tetrahedron on two needle input triangles takes the de
     CHECK(out.quality.dihedral_min_deg > 0.5);
 }
 
+TEST_CASE("refine: a sliver's star that keeps a sliver does not lower the smallest angle") {
+    // thingicsg-sprocket: a disc 0.2 thick and 20 wide, fanned from the
+    // centres of its faces. Recovery leaves a smallest dihedral angle of
+    // 1.15 deg (the tetrahedra around the axis between the two centres;
+    // TetGen -pYq1.414 the same). Sliver removal took it to 0.50 deg with
+    // stars whose worst radius ratio beat their cavity's by kSliverGain
+    // and stayed under 0.003: such a star is refused when it lowers the
+    // cavity's smallest angle.
+    cbr::test::OffSurface off;
+    if (!shared_surface("thingicsg-sprocket", off)) return;
+    const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.03, false);
+    CHECK(out.stats.sliver_points >= 1);
+    CHECK(out.quality.dihedral_min_deg > 1.14);
+}
+
 TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {
     // Near its sharp edges, circumcentres once went in 1e-4 of the local
     // size from a vertex their corrected cavity kept (two field points

@@ -73,6 +73,7 @@ private:
         bool deepest = false;
     };
     bool insert(TetId sliver, Choice& best);
+    bool keeps_smallest_angle(const Choice& best);
     void rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search, Choice& best,
                      const Point* kernel_from = nullptr);
     void rate_shells(TetId sliver, const ShellRating& rating, Choice& best);
@@ -386,11 +387,40 @@ bool SliverRemover::rescue(TetId sliver) {
     return insert(sliver, best);
 }
 
+// Whether best's star keeps the smallest dihedral angle of its cavity
+// (leaves cavity_ and boundary_ those of best's cavity). The radius ratio
+// can rise while the smallest angle falls: a star that still keeps a
+// sliver (worst radius ratio under the threshold) and lowers the angle is
+// no clear gain, and it is refused (thingicsg-sprocket, a thin disc fanned
+// from its centre: such stars, q 0.001-0.003, took its smallest angle
+// from 1.15 deg, where recovery left it, to 0.50; TetGen -pYq1.414 keeps
+// 1.15). A star that clears the threshold is taken whatever its angles:
+// refusing those too doubled the feeder body's bad tetrahedra at Steiner
+// points.
+bool SliverRemover::keeps_smallest_angle(const Choice& best) {
+    double before = 180, after = 180, smallest = 0, largest = 0;
+    marks_.new_round(m_.slot_count());
+    cavity_.clear();
+    for (TetId t : best.cavity) {
+        add_to_cavity(t);
+        const VertexId* v = m_.vertices(t);
+        dihedral_range(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), smallest, largest);
+        before = std::min(before, smallest);
+    }
+    collect_boundary();
+    for (const BoundaryFace& f : boundary_) {
+        dihedral_range(f.corners[0], f.corners[1], f.corners[2], best.point.data(), smallest, largest);
+        after = std::min(after, smallest);
+    }
+    return after >= before;
+}
+
 // Inserts best's point into best's cavity (the sliver's region).
 bool SliverRemover::insert(TetId sliver, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     // The smallest cavity with a valid star (the least change), or none.
     if (best.quality == 0) return false;
+    if (best.quality < threshold_ && !keeps_smallest_angle(best)) return false;
     cavity_.swap(best.cavity);
     const TetId start = containing(best.point.data());
     if (start == mesh::kNoTet) return false;
