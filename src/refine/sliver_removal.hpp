@@ -29,7 +29,9 @@
 // cavity tetrahedron, and points above the sliver's constraint faces,
 // judged exactly before anything changes: every face of the cavity's
 // boundary must see the point strictly (so the star is valid and the
-// point is strictly inside the region, never on the surface).
+// point is strictly inside the region, never on the surface). A star that
+// still keeps a sliver must also keep the cavity's smallest dihedral
+// angle (the radius ratio can rise while it falls).
 #pragma once
 
 #include <cstddef>
