@@ -2,14 +2,17 @@
 """Measures and formats what run_refine_bench.sh collected (RAW.csv): reads
 each successful run's TetGen-format mesh (.node/.ele, both tools), computes
 Table II with the formulas of src/cli/quality.hpp (q = 3 r_in / r_circ after
-scaling to unit longest edge; dihedral angles by atan2), prints the per-mesh
-table and the totals (over the surfaces both tools meshed), and with
---csv FILE writes them as CSV.
+scaling to unit longest edge; dihedral angles by atan2), takes libcbr's
+"q < 0.1 touching a Steiner point" from its --json report (column stn;
+TetGen's output does not tell its Steiner points from its other points),
+prints the per-mesh table and the totals (over the surfaces both tools
+meshed), and with --csv FILE writes them as CSV.
 
     refine_bench_table.py RAW.csv [--csv FILE]
 """
 import argparse
 import csv
+import json
 import math
 import sys
 
@@ -96,6 +99,16 @@ def table_two(node_path, ele_path):
             "dih": dmin if n else None, "below": 100.0 * below / n if n else None}
 
 
+def bad_at_steiner(json_path):
+    """Table II's "q < 0.1 touching a Steiner point" from cbr's --json
+    report, or None when there is none."""
+    try:
+        with open(json_path) as f:
+            return json.load(f)["table_two"]["bad_touching_steiner"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
 def fmt(v, spec):
     return "-" if v is None else format(v, spec)
 
@@ -116,30 +129,36 @@ def main():
             for tool, key in (("cbr", "cbr"), ("tg", "tetgen")):
                 row[tool + "_s"] = float(r[key + "_seconds"]) if r[key + "_seconds"] else None
                 row[tool] = table_two(r[key + "_node"], r[key + "_ele"]) if r[key + "_status"] == "ok" else None
+            if row["cbr"] is not None:
+                row["cbr"]["stn"] = bad_at_steiner(r.get("cbr_json") or "")
             rows.append(row)
 
-    head = ("%-30s %7s | %8s %8s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | %7s %7s | %6s %6s"
+    head = ("%-30s %7s | %8s %8s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | %5s | %7s %7s | %6s %6s"
             % ("surface", "status", "tets", "tg tets", "q avg", "tg", "q min", "tg", "dihmin", "tg",
-               "%q<.1", "tg", "time s", "tg s", "tets x", "time x"))
+               "%q<.1", "tg", "stn", "time s", "tg s", "tets x", "time x"))
     print("Mesh generation: cbr mesh vs tetgen -pYq1.414 (same surfaces, same run; x = cbr / tetgen)")
     print(head)
     print("-" * len(head))
     out = []
-    tot = {"cbr_t": 0, "tg_t": 0, "cbr_s": 0.0, "tg_s": 0.0, "cbr_q": 0.0, "tg_q": 0.0, "cbr_b": 0.0, "tg_b": 0.0,
+    tot = {"stn": 0, "stn_missing": 0, "cbr_t": 0, "tg_t": 0, "cbr_s": 0.0, "tg_s": 0.0, "cbr_q": 0.0, "tg_q": 0.0, "cbr_b": 0.0, "tg_b": 0.0,
            "cbr_min": 1.0, "tg_min": 1.0, "cbr_dih": 180.0, "tg_dih": 180.0, "n": 0}
     for r in rows:
         c, t = r["cbr"] or {}, r["tg"] or {}
         status = r["cbr_status"] if r["cbr_status"] != "ok" else ("ok" if r["tg_status"] == "ok" else "tg " + r["tg_status"])
-        print("%-30s %7s | %8s %8s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | %7s %7s | %6s %6s" % (
+        print("%-30s %7s | %8s %8s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | %5s | %7s %7s | %6s %6s" % (
             r["file"][:30], status, fmt(c.get("tets"), "d"), fmt(t.get("tets"), "d"),
             fmt(c.get("avg"), ".4f"), fmt(t.get("avg"), ".4f"), fmt(c.get("min"), ".4f"), fmt(t.get("min"), ".4f"),
             fmt(c.get("dih"), ".2f"), fmt(t.get("dih"), ".2f"), fmt(c.get("below"), ".3f"), fmt(t.get("below"), ".3f"),
-            fmt(r["cbr_s"], ".3f"), fmt(r["tg_s"], ".3f"),
+            fmt(c.get("stn"), "d"), fmt(r["cbr_s"], ".3f"), fmt(r["tg_s"], ".3f"),
             fmt(ratio(c.get("tets"), t.get("tets")), ".2f"), fmt(ratio(r["cbr_s"], r["tg_s"]), ".2f")))
         out.append([r["file"], status, c.get("tets"), t.get("tets"), c.get("avg"), t.get("avg"), c.get("min"), t.get("min"),
-                    c.get("dih"), t.get("dih"), c.get("below"), t.get("below"), r["cbr_s"], r["tg_s"]])
+                    c.get("dih"), t.get("dih"), c.get("below"), t.get("below"), r["cbr_s"], r["tg_s"], c.get("stn")])
         if r["cbr"] and r["tg"]:
             tot["n"] += 1
+            if c.get("stn") is None:
+                tot["stn_missing"] += 1
+            else:
+                tot["stn"] += c["stn"]
             for tool, m, s in (("cbr", c, r["cbr_s"]), ("tg", t, r["tg_s"])):
                 tot[tool + "_t"] += m["tets"]
                 tot[tool + "_s"] += s
@@ -151,19 +170,21 @@ def main():
     if tot["n"]:
         ct, tt = tot["cbr_t"], tot["tg_t"]
         total = ["total (%d both ok)" % tot["n"], "", ct, tt, tot["cbr_q"] / ct, tot["tg_q"] / tt, tot["cbr_min"], tot["tg_min"],
-                 tot["cbr_dih"], tot["tg_dih"], 100.0 * tot["cbr_b"] / ct, 100.0 * tot["tg_b"] / tt, tot["cbr_s"], tot["tg_s"]]
-        print("%-30s %7s | %8d %8d | %6.4f %6.4f | %6.4f %6.4f | %6.2f %6.2f | %6.3f %6.3f | %7.3f %7.3f | %6.2f %6.2f" % (
+                 tot["cbr_dih"], tot["tg_dih"], 100.0 * tot["cbr_b"] / ct, 100.0 * tot["tg_b"] / tt, tot["cbr_s"], tot["tg_s"],
+                 tot["stn"] if not tot["stn_missing"] else None]
+        print("%-30s %7s | %8d %8d | %6.4f %6.4f | %6.4f %6.4f | %6.2f %6.2f | %6.3f %6.3f | %5s | %7.3f %7.3f | %6.2f %6.2f" % (
             total[0], "", ct, tt, total[4], total[5], total[6], total[7], total[8], total[9], total[10], total[11],
-            total[12], total[13], ct / tt, total[12] / total[13] if total[13] else float("nan")))
+            fmt(total[14], "d"), total[12], total[13], ct / tt, total[12] / total[13] if total[13] else float("nan")))
         print("(total: q avg and %%q<.1 over all tetrahedra, q min and dihedral min over all meshes; "
-              "tetrahedra with q < 0.1: %d cbr, %d tetgen)" % (round(tot["cbr_b"]), round(tot["tg_b"])))
+              "tetrahedra with q < 0.1: %d cbr, %d tetgen; stn: cbr's tetrahedra with q < 0.1 touching a Steiner point, "
+              "Table II's last row)" % (round(tot["cbr_b"]), round(tot["tg_b"])))
         out.append(total)
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["surface", "status", "cbr_tets", "tetgen_tets", "cbr_q_avg", "tetgen_q_avg", "cbr_q_min",
                         "tetgen_q_min", "cbr_dihedral_min", "tetgen_dihedral_min", "cbr_pct_below_0_1",
-                        "tetgen_pct_below_0_1", "cbr_seconds", "tetgen_seconds"])
+                        "tetgen_pct_below_0_1", "cbr_seconds", "tetgen_seconds", "cbr_bad_at_steiner"])
             w.writerows(out)
 
 

@@ -6,7 +6,10 @@
 # meshes are measured by the same code (refine_bench_table.py, the formulas
 # of src/cli/quality.hpp) and printed per mesh and in total: tetrahedra,
 # average and minimum quality q = 3 r_in / r_circ, minimum dihedral angle,
-# % of tetrahedra with q < 0.1, wall time, and the ratios libcbr / TetGen.
+# % of tetrahedra with q < 0.1, wall time, and the ratios libcbr / TetGen;
+# for libcbr also Table II's "q < 0.1 touching a Steiner point" (from its
+# --json report: TetGen's output does not say which points are Steiner
+# points).
 #
 #   tests/bench/run_refine_bench.sh [options] [DATA_DIR] [SURFACE...]
 #
@@ -105,7 +108,7 @@ if [ -n "$size" ]; then
 fi
 
 raw=$work/raw.csv
-echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele" >"$raw"
+echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele,cbr_json" >"$raw"
 n=${#files[@]}
 i=0
 if [ -n "$growth" ]; then size_args+=(--growth "$growth"); fi
@@ -117,7 +120,7 @@ for f in "${files[@]}"; do
     mkdir -p "$dir/tetgen"
 
     out=$dir/cbr.out err=$dir/cbr.err
-    timed "$cbr" mesh -q "$f" -o "$dir/cbr.node" "${size_args[@]}"
+    timed "$cbr" mesh -q "$f" -o "$dir/cbr.node" --json "$dir/cbr.json" "${size_args[@]}"
     case $rc in
         0) cbr_status=ok ;;
         3) cbr_status=FAILED ;;
@@ -140,7 +143,7 @@ for f in "${files[@]}"; do
             tg_status=FAILED
         fi
     fi
-    echo "$name,$cbr_status,$cbr_secs,$dir/cbr.node,$dir/cbr.ele,$tg_status,$tg_secs,$dir/tetgen/$name.1.node,$dir/tetgen/$name.1.ele" >>"$raw"
+    echo "$name,$cbr_status,$cbr_secs,$dir/cbr.node,$dir/cbr.ele,$tg_status,$tg_secs,$dir/tetgen/$name.1.node,$dir/tetgen/$name.1.ele,$dir/cbr.json" >>"$raw"
     printf '   [%d/%d] %-36s cbr %-7s %8s s   tetgen %-7s %8s s\n' "$i" "$n" "$name" "$cbr_status" "$cbr_secs" \
         "${tg_status:-n/a}" "${tg_secs:--}"
 done
