@@ -140,7 +140,7 @@ def main():
     print(head)
     print("-" * len(head))
     out = []
-    tot = {"stn": 0, "stn_missing": 0, "cbr_t": 0, "tg_t": 0, "cbr_s": 0.0, "tg_s": 0.0, "cbr_q": 0.0, "tg_q": 0.0, "cbr_b": 0.0, "tg_b": 0.0,
+    tot = {"stn": 0, "cbr_t": 0, "tg_t": 0, "cbr_s": 0.0, "tg_s": 0.0, "cbr_q": 0.0, "tg_q": 0.0, "cbr_b": 0.0, "tg_b": 0.0,
            "cbr_min": 1.0, "tg_min": 1.0, "cbr_dih": 180.0, "tg_dih": 180.0, "n": 0}
     for r in rows:
         c, t = r["cbr"] or {}, r["tg"] or {}
@@ -155,10 +155,8 @@ def main():
                     c.get("dih"), t.get("dih"), c.get("below"), t.get("below"), r["cbr_s"], r["tg_s"], c.get("stn")])
         if r["cbr"] and r["tg"]:
             tot["n"] += 1
-            if c.get("stn") is None:
-                tot["stn_missing"] += 1
-            else:
-                tot["stn"] += c["stn"]
+            # No total once a report lacks the count.
+            tot["stn"] = None if tot["stn"] is None or c.get("stn") is None else tot["stn"] + c["stn"]
             for tool, m, s in (("cbr", c, r["cbr_s"]), ("tg", t, r["tg_s"])):
                 tot[tool + "_t"] += m["tets"]
                 tot[tool + "_s"] += s
@@ -171,7 +169,7 @@ def main():
         ct, tt = tot["cbr_t"], tot["tg_t"]
         total = ["total (%d both ok)" % tot["n"], "", ct, tt, tot["cbr_q"] / ct, tot["tg_q"] / tt, tot["cbr_min"], tot["tg_min"],
                  tot["cbr_dih"], tot["tg_dih"], 100.0 * tot["cbr_b"] / ct, 100.0 * tot["tg_b"] / tt, tot["cbr_s"], tot["tg_s"],
-                 tot["stn"] if not tot["stn_missing"] else None]
+                 tot["stn"]]
         print("%-30s %7s | %8d %8d | %6.4f %6.4f | %6.4f %6.4f | %6.2f %6.2f | %6.3f %6.3f | %5s | %7.3f %7.3f | %6.2f %6.2f" % (
             total[0], "", ct, tt, total[4], total[5], total[6], total[7], total[8], total[9], total[10], total[11],
             fmt(total[14], "d"), total[12], total[13], ct / tt, total[12] / total[13] if total[13] else float("nan")))
