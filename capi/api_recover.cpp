@@ -41,47 +41,20 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
     return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
 }
 
-// Recovery on the Delaunay mesh as it is now and, after a failure (not a
-// broken invariant), from that Delaunay mesh again with another budget
-// for the deepest flip round, each of kRetryFlipBudgets in turn. The
-// flips decide the mesh that conforming recovery and point splitting
-// start from, and where those fail (rounded points between nearly
-// coplanar faces of a surface turned in space) they fail in one flip
-// state and not in another, with no budget better than the others:
-// on turned fan-cap prisms and CAD parts each budget from 5,000 to 80,000
-// recovers some failures and not others. The first success is returned,
-// with its statistics in `stats`; a failure is the first attempt's, its
-// reason naming the other flip states tried, and the mesh is whatever the
-// last attempt left. Only where the deepest round runs with its default
-// budget (options.retries, deep_flips, no deepest_flip_budget). The other
-// flip states try the plain unblocking points only
-// (kRetryUnblockingTries).
-cbr::recover::RecoveryResult recover_in_flip_states(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
-                                                    cbr::recover::RecoveryStats& stats) {
-    const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
-    // The flips may run again from the Delaunay mesh (recovery.cpp,
-    // kFlipRestartShare): rebuild() gives it back, bit for bit.
-    const std::function<void()> delaunay_again = [&mesh] { mesh.delaunay.rebuild(); };
-    cbr::recover::RecoveryResult first =
-        cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options, delaunay_again);
-    if (first.ok || !first.invalid.empty() || !options.retries || !options.deep_flips ||
-        options.deepest_flip_budget != 0)
-        return first;
-    for (const int budget : cbr::recover::kRetryFlipBudgets) {
-        mesh.delaunay.rebuild();
-        cbr::recover::RecoveryOptions other = options;
-        other.deepest_flip_budget = budget;
-        other.unblocking_tries = std::min(other.unblocking_tries, cbr::recover::kRetryUnblockingTries);
-        cbr::recover::RecoveryStats other_stats;
-        cbr::recover::RecoveryResult again =
-            cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, other_stats, other, delaunay_again);
-        if (again.ok || !again.invalid.empty()) {
-            stats = other_stats;
-            return again;
-        }
+// One attempt of recovery from the Delaunay mesh as it is now, with the
+// deepest flip round's budget `budget` (0: the caller's options; another
+// budget also tries only the plain unblocking points,
+// kRetryUnblockingTries). The flips may run again from the Delaunay mesh
+// (recovery.cpp, kFlipRestartShare): rebuild() gives it back, bit for bit.
+cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces, int budget,
+                                     cbr::recover::RecoveryStats& stats) {
+    cbr::recover::RecoveryOptions options = mesh.recovery_options;
+    if (budget != 0) {
+        options.deepest_flip_budget = budget;
+        options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryUnblockingTries);
     }
-    first.why += " (and from " + std::to_string(std::size(cbr::recover::kRetryFlipBudgets)) + " other flip states)";
-    return first;
+    const std::function<void()> delaunay_again = [&mesh] { mesh.delaunay.rebuild(); };
+    return cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options, delaunay_again);
 }
 
 // The corners of a cube around every point of m, centred on their
@@ -103,38 +76,91 @@ std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
     return corners;
 }
 
-// The last attempts of cbr_mesh_recover_faces, after `result` failed in
-// every flip state: the Delaunay mesh of the points again, with the
-// corners of enclosing_box() added, so that every input triangle is
-// interior to the mesh, away from its convex hull, and recover_in_flip_states
-// there. Surfaces with nearly planar faces on the hull (a rotated CAD
-// cylinder's fanned caps: the flat layer between them and the hull leaves
-// no room for the points that split them) often recover so. On success
-// `result` and state.stats are the successful attempt's, and `corners`
-// lists the eight corners: they follow the caller's points and count as
-// Steiner points (outside every bounded region). On failure the boxed
-// attempts' reason is added to result.why (their invalid report replaces
-// the first's), and the mesh is the Delaunay mesh of the caller's points
-// once more.
-void recover_in_enclosing_box(cbr_mesh& mesh, cbr::capi::RecoveryState& state, cbr::recover::RecoveryResult& result,
-                              std::vector<cbr::mesh::VertexId>& corners) {
-    mesh.delaunay.rebuild();
+// The attempts of cbr_mesh_recover_faces, until one recovers every face
+// (or breaks an invariant, which ends them):
+//   1. on the Delaunay mesh of the caller's points, with the options as
+//      they are;
+//   then, with options.retries,
+//   2. inside an enclosing box: the same with the corners of
+//      enclosing_box() added, so that every input triangle is interior to
+//      the mesh, away from its convex hull;
+//   3. on the Delaunay mesh again with the deepest flip round's budget at
+//      each of kRetryFlipBudgets (where the deepest round runs with its
+//      default budget: options.deep_flips, no deepest_flip_budget);
+//   4. those budgets inside the box.
+// The flips decide the mesh that conforming recovery and point splitting
+// start from. Where those fail (rounded points between nearly coplanar
+// faces of a surface turned in space) they fail in one flip state and not
+// in another, with no budget better than the others (turned fan-cap
+// prisms and CAD parts: each budget from 5,000 to 80,000 recovers some
+// failures and not others). Surfaces with nearly planar faces on the hull
+// (a turned CAD cylinder's fanned caps: the flat layer between them and
+// the hull leaves no room for the points that split them) recover inside
+// the box, and they are most of the first attempt's failures: of the 36
+// shared surfaces other than the feeder body, as given and turned by
+// rotate_surface.py seeds 1-4, 8 of 180 fail the first attempt; the box
+// recovers all 8, the other budgets 1. So the box comes second.
+//
+// Returns the successful attempt's result, its statistics in `stats`;
+// `corners` then lists the box's eight corners if it was used: they follow
+// the caller's points and count as Steiner points (outside every bounded
+// region). On failure, the first attempt's result and statistics, its
+// reason naming the attempts after it; the caller rebuilds the Delaunay
+// mesh.
+cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
+                                                 cbr::recover::RecoveryStats& stats,
+                                                 std::vector<cbr::mesh::VertexId>& corners) {
+    const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
+    // The box around the caller's points (the mesh holds only them now);
+    // its corners would follow them.
     const std::vector<double> box = enclosing_box(mesh.delaunay.mesh());
-    const auto first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
-    if (!mesh.delaunay.insert_points(box.data(), 8).ok) return;  // restored by insert_points
-    cbr::recover::RecoveryStats stats;
-    cbr::recover::RecoveryResult boxed = recover_in_flip_states(mesh, state.faces, stats);
-    if (!boxed.ok) {
-        if (!boxed.invalid.empty()) result.invalid = boxed.invalid;
-        result.why += " (and inside an enclosing box: " + boxed.why + ")";
-        mesh.delaunay.drop_last_batch();
-        return;
-    }
-    result = std::move(boxed);
-    state.stats = stats;
-    state.stats.steiner_generated += 8;
-    state.stats.steiner_remaining += 8;
-    for (cbr::mesh::VertexId v = first; v < first + 8; ++v) corners.push_back(v);
+    const auto box_first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
+    cbr::recover::RecoveryResult first = attempt(mesh, faces, 0, stats);
+    if (first.ok || !first.invalid.empty() || !options.retries) return first;
+    const bool other_budgets = options.deep_flips && options.deepest_flip_budget == 0;
+    cbr::recover::RecoveryResult boxed;  // the first boxed attempt's, for the message
+    bool boxed_tried = false;
+    // The attempt with `budget`, in the box or not; true when it ends the
+    // attempts (a success, or a broken invariant).
+    const auto run = [&](bool in_box, int budget) {
+        mesh.delaunay.rebuild();
+        if (in_box) {
+            if (!mesh.delaunay.insert_points(box.data(), 8).ok) return false;  // restored by insert_points
+            if (budget != 0) mesh.delaunay.rebuild();  // as built from scratch, like every retry
+        }
+        cbr::recover::RecoveryStats attempt_stats;
+        cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
+        if (in_box && !r.ok) mesh.delaunay.drop_last_batch();
+        if (r.ok || !r.invalid.empty()) {
+            stats = attempt_stats;
+            if (in_box && r.ok) {
+                stats.steiner_generated += 8;
+                stats.steiner_remaining += 8;
+                for (cbr::mesh::VertexId v = box_first; v < box_first + 8; ++v) corners.push_back(v);
+            }
+            first = std::move(r);
+            return true;
+        }
+        if (in_box && !boxed_tried) {
+            boxed = std::move(r);
+            boxed_tried = true;
+        }
+        return false;
+    };
+    if (run(true, 0)) return first;
+    if (other_budgets)
+        for (const int budget : cbr::recover::kRetryFlipBudgets)
+            if (run(false, budget)) return first;
+    if (other_budgets)
+        for (const int budget : cbr::recover::kRetryFlipBudgets)
+            if (run(true, budget)) return first;
+    const std::string others =
+        other_budgets ? " (and from " + std::to_string(std::size(cbr::recover::kRetryFlipBudgets)) +
+                            " other flip states)"
+                      : "";
+    first.why += others;
+    if (boxed_tried) first.why += " (and inside an enclosing box: " + boxed.why + others + ")";
+    return first;
 }
 
 // CBR_STAT_STEINER_INSIDE: the distinct Steiner points that some tetrahedron
@@ -180,15 +206,10 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         const auto start = std::chrono::steady_clock::now();
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
-        cbr::recover::RecoveryResult result = recover_in_flip_states(*mesh, state.faces, state.stats);
-        // After a failure in every flip state (not a broken invariant): the
-        // attempts inside an enclosing box, which restore the Delaunay mesh
-        // themselves if they fail.
         std::vector<cbr::mesh::VertexId> box_corners;
-        const bool boxed = !result.ok && result.invalid.empty() && mesh->recovery_options.retries;
-        if (boxed) recover_in_enclosing_box(*mesh, state, result, box_corners);
+        cbr::recover::RecoveryResult result = recover_in_attempts(*mesh, state.faces, state.stats, box_corners);
         if (!result.ok) {
-            if (!boxed) mesh->delaunay.rebuild();  // the mesh stays as it was
+            mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).
             mesh->recovery.stats = state.stats;
             mesh->recovery.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

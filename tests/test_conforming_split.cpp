@@ -1290,9 +1290,10 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     // recovery fails in every order of the faces and with unblocking points
     // of any star; the flips with another budget leave a mesh from which it
     // succeeds. cbr_mesh_recover_faces tries those budgets
-    // (kRetryFlipBudgets) after a failure; test_capi_recover checks that it
-    // does. If the default ever succeeds, this test no longer shows why the
-    // retry is there, and says so.
+    // (kRetryFlipBudgets) after a failure, once the enclosing box has
+    // failed too (this prism recovers in the box already;
+    // test_capi_recover checks that order). If the default ever succeeds,
+    // this test no longer shows why the retry is there, and says so.
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r22.off", s));
     {

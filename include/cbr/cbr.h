@@ -140,10 +140,11 @@ extern "C" {
    0 or 1. */
 #define CBR_PARAM_RECOVERY_DEEP_FLIPS 9
 /* Option of cbr_mesh_recover_faces: 1 (default) = after a failure on the
-   Delaunay mesh of the points, recovery is attempted again from other flip
-   states and inside an enclosing box (see cbr_mesh_recover_faces; up to six
-   attempts in all, so a failure takes several times as long as one
-   attempt). 0 = the first attempt's failure is reported at once. 0 or 1. */
+   Delaunay mesh of the points, recovery is attempted again inside an
+   enclosing box, then from other flip states, outside the box and inside
+   it (see cbr_mesh_recover_faces; up to six attempts in all, so a failure
+   takes several times as long as one attempt). 0 = the first attempt's
+   failure is reported at once. 0 or 1. */
 #define CBR_PARAM_RECOVERY_RETRIES 10
 
 /* ------------------------------------------------------------------------ */
@@ -293,17 +294,20 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
    flips leave faces that the later steps cannot complete, it starts again
    from the mesh the flips left with other such points (of any star size,
    then denser and nearer the faces).
-   When recovery fails on the Delaunay mesh of the points, it starts again
-   from that mesh with other budgets for the deepest flip round (10,000,
-   then 30,000 edge removals a face; only with CBR_PARAM_RECOVERY_DEEP_FLIPS
-   at 1): the flips decide where the later steps start, and on nearly flat
-   parts one start fails where another succeeds. If all fail, the same is
-   tried with the eight corners of a cube around the points added (every
-   input triangle then lies away from the convex hull); if that succeeds,
-   the corners are the first Steiner points (ids right after the caller's
-   points), in the exterior. The statistics are those of the attempt that
-   succeeded (of the first one after a failure). A failing recovery runs
-   every attempt, so it takes several times as long as a successful one.
+   When recovery fails on the Delaunay mesh of the points, it is tried again
+   with the eight corners of a cube around the points added (every input
+   triangle then lies away from the convex hull, where nearly planar faces
+   of turned CAD parts leave no room; this recovers most first failures);
+   if that succeeds, the corners are the first Steiner points (ids right
+   after the caller's points), in the exterior. If it fails too, recovery
+   starts again from the Delaunay mesh with other budgets for the deepest
+   flip round (10,000, then 30,000 edge removals a face; only with
+   CBR_PARAM_RECOVERY_DEEP_FLIPS at 1): the flips decide where the later
+   steps start, and on nearly flat parts one start fails where another
+   succeeds. Last, those budgets are tried inside the cube. The statistics
+   are those of the attempt that succeeded (of the first one after a
+   failure). A failing recovery runs every attempt, so it takes several
+   times as long as a successful one.
    Errors (the mesh is then unchanged):
      CBR_ERR_INVALID_ARGUMENT  NULL mesh, NULL tris with count > 0, negative
                                count, or called twice;

@@ -46,10 +46,11 @@ struct RecoveryOptions {
     // flip_recovery.cpp). Not in the C API: tests vary it to reach other
     // mesh states for the steps after the flips.
     int deepest_flip_budget = 0;
-    // cbr_mesh_recover_faces (api_recover.cpp), after a failure: recovery
-    // again from the Delaunay mesh with the deepest flip round's budget at
-    // each of kRetryFlipBudgets, then all of that again with the eight
-    // corners of an enclosing box added. CBR_PARAM_RECOVERY_RETRIES.
+    // cbr_mesh_recover_faces (api_recover.cpp, recover_in_attempts), after
+    // a failure: recovery again with the eight corners of an enclosing box
+    // added, then from the Delaunay mesh with the deepest flip round's
+    // budget at each of kRetryFlipBudgets, outside the box and inside it.
+    // CBR_PARAM_RECOVERY_RETRIES.
     bool retries = true;
     // Orders of the faces that conforming recovery and splitting try, each
     // from the mesh the flips left (recovery.cpp, recover_in_face_orders).
