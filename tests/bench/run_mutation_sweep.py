@@ -22,9 +22,10 @@ that volume check fails; those are listed apart.
   --seed S        seed of the sweep (default 1; same seed, same cases)
   --timeout S     seconds allowed to each run (default 120)
   --keep DIR      copy every listed case's OFF into DIR
-  SURFACE...      names in the shared data (default: the small surfaces
-                  below); the data directory is $CBR_SHARED_DATA_DIR/surfaces
-                  or ../shared/data/surfaces next to the repository
+  SURFACE...      names in the shared data (default: the 13 small ones of
+                  SMALL_SURFACES); the data directory is
+                  $CBR_SHARED_DATA_DIR/surfaces or ../shared/data/surfaces
+                  next to the repository
 
 Mutations (all seeded; sizes relative to the surface's bounding box):
   jitter-all   every point moved by up to 1e-3 .. 1e-16
@@ -170,9 +171,10 @@ def main():
         if not os.path.isfile(os.path.join(data, s + ".off")):
             print(f"run_mutation_sweep.py: no surface {s} in {data} (set CBR_SHARED_DATA_DIR)", file=sys.stderr)
             return 2
-    if not os.access(args.cbr, os.X_OK):
-        print(f"run_mutation_sweep.py: {args.cbr} is not an executable", file=sys.stderr)
-        return 2
+    for tool in [args.cbr] + ([args.verify] if args.verify else []):
+        if not os.access(tool, os.X_OK):
+            print(f"run_mutation_sweep.py: {tool} is not an executable", file=sys.stderr)
+            return 2
     rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="cbr-mutation-sweep.")
     counts = {kind: {"cases": 0, "ok": 0, "rejected": 0, "failed": 0, "bug": 0} for kind in MUTATIONS}
