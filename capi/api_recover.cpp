@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -117,49 +119,58 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
     const auto box_first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
     cbr::recover::RecoveryResult first = attempt(mesh, faces, 0, stats);
     if (first.ok || !first.invalid.empty() || !options.retries) return first;
-    const bool other_budgets = options.deep_flips && options.deepest_flip_budget == 0;
-    cbr::recover::RecoveryResult boxed;  // the first boxed attempt's, for the message
-    bool boxed_tried = false;
-    // The attempt with `budget`, in the box or not; true when it ends the
-    // attempts (a success, or a broken invariant).
-    const auto run = [&](bool in_box, int budget) {
-        mesh.delaunay.rebuild();
-        if (in_box) {
-            if (!mesh.delaunay.insert_points(box.data(), 8).ok) return false;  // restored by insert_points
-            if (budget != 0) mesh.delaunay.rebuild();  // as built from scratch, like every retry
-        }
-        cbr::recover::RecoveryStats attempt_stats;
-        cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
-        if (in_box && !r.ok) mesh.delaunay.drop_last_batch();
-        if (r.ok || !r.invalid.empty()) {
-            stats = attempt_stats;
-            if (in_box && r.ok) {
-                stats.steiner_generated += 8;
-                stats.steiner_remaining += 8;
-                for (cbr::mesh::VertexId v = box_first; v < box_first + 8; ++v) corners.push_back(v);
-            }
-            first = std::move(r);
-            return true;
-        }
-        if (in_box && !boxed_tried) {
-            boxed = std::move(r);
-            boxed_tried = true;
+    std::optional<std::string> boxed_why;  // the first boxed attempt's reason, for the message
+    // An attempt that ends the attempts (a success, or a broken invariant)
+    // becomes `first`; true then.
+    const auto ends = [&](cbr::recover::RecoveryResult& r, const cbr::recover::RecoveryStats& attempt_stats) {
+        if (!r.ok && r.invalid.empty()) return false;
+        stats = attempt_stats;
+        first = std::move(r);
+        return true;
+    };
+    // Attempts with `budgets` on the Delaunay mesh of the caller's points,
+    // each from that mesh built anew.
+    const auto outside = [&](const std::vector<int>& budgets) {
+        for (const int budget : budgets) {
+            mesh.delaunay.rebuild();
+            cbr::recover::RecoveryStats attempt_stats;
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
+            if (ends(r, attempt_stats)) return true;
         }
         return false;
     };
-    if (run(true, 0)) return first;
-    if (other_budgets)
-        for (const int budget : cbr::recover::kRetryFlipBudgets)
-            if (run(false, budget)) return first;
-    if (other_budgets)
-        for (const int budget : cbr::recover::kRetryFlipBudgets)
-            if (run(true, budget)) return first;
+    // Attempts with `budgets` with the box's corners added: the first from
+    // the mesh they were inserted in, the others (budgets other than the
+    // default) from the mesh built anew with them, like every retry. The
+    // corners stay for a success and go otherwise.
+    const auto inside = [&](const std::vector<int>& budgets) {
+        mesh.delaunay.rebuild();
+        if (!mesh.delaunay.insert_points(box.data(), 8).ok) return false;  // restored by insert_points
+        for (const int budget : budgets) {
+            if (budget != 0) mesh.delaunay.rebuild();
+            cbr::recover::RecoveryStats attempt_stats;
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
+            if (r.ok) {
+                ends(r, attempt_stats);
+                stats.steiner_generated += 8;
+                stats.steiner_remaining += 8;
+                for (cbr::mesh::VertexId v = box_first; v < box_first + 8; ++v) corners.push_back(v);
+                return true;
+            }
+            if (!boxed_why) boxed_why = r.why;
+            if (ends(r, attempt_stats)) break;  // a broken invariant: the corners go too
+        }
+        mesh.delaunay.drop_last_batch();
+        return !first.invalid.empty();
+    };
+    std::vector<int> retry_budgets;  // where the deepest round runs with its default budget
+    if (options.deep_flips && options.deepest_flip_budget == 0)
+        retry_budgets.assign(std::begin(cbr::recover::kRetryFlipBudgets), std::end(cbr::recover::kRetryFlipBudgets));
+    if (inside({0}) || outside(retry_budgets) || (!retry_budgets.empty() && inside(retry_budgets))) return first;
     const std::string others =
-        other_budgets ? " (and from " + std::to_string(std::size(cbr::recover::kRetryFlipBudgets)) +
-                            " other flip states)"
-                      : "";
+        retry_budgets.empty() ? "" : " (and from " + std::to_string(retry_budgets.size()) + " other flip states)";
     first.why += others;
-    if (boxed_tried) first.why += " (and inside an enclosing box: " + boxed.why + others + ")";
+    if (boxed_why) first.why += " (and inside an enclosing box: " + *boxed_why + others + ")";
     return first;
 }
 

@@ -53,6 +53,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rotate_surface import read_off  # noqa: E402  (the benchmark scripts' OFF reader)
+
 SMALL_SURFACES = [
     "cgal-cube", "cgal-cheese-box", "wildmeshing-csg-x", "thingiverse-mouth", "thingicsg-sprocket-small",
     "thingicsg-openscad-example012", "thingicsg-openscad-example016", "thingi10k-37322",
@@ -63,20 +66,10 @@ MUTATIONS = ["jitter-all", "jitter-one", "snap", "scale-shift", "swap", "flip", 
              "drop", "bad-value", "bad-index"]
 
 
-def read_off(path):
-    tokens = open(path).read().split()
-    if tokens[0] != "OFF":
-        raise ValueError(f"{path}: not an OFF file")
-    nv, nf = int(tokens[1]), int(tokens[2])
-    at = 4
-    points = [[float(x) for x in tokens[at + 3 * i:at + 3 * i + 3]] for i in range(nv)]
-    at += 3 * nv
-    faces = []
-    for _ in range(nf):
-        k = int(tokens[at])
-        faces.append([int(x) for x in tokens[at + 1:at + 1 + k]])
-        at += 1 + k
-    return points, faces
+def read_surface(path):
+    """Points (lists of floats) and faces (lists of indices) of an OFF file."""
+    points, faces = read_off(path)
+    return [list(p) for p in points], [[int(i) for i in f[1:]] for f in faces]
 
 
 def write_off(path, points, faces):
@@ -183,7 +176,7 @@ def main():
         for case in range(args.cases):
             name, kind = rng.choice(names), rng.choice(MUTATIONS)
             command = ("mesh", "recover")[case % 2]
-            points, faces = read_off(os.path.join(data, name + ".off"))
+            points, faces = read_surface(os.path.join(data, name + ".off"))
             mutate(kind, points, faces, rng)
             surface = os.path.join(work, f"case{case}-{name}-{kind}.off")
             mesh = os.path.join(work, "out.mesh")
