@@ -36,7 +36,7 @@ public:
 
 private:
     double min_quality(double floor) const;
-    double sum_quality(double floor) const;
+    double sum_quality(double floor, double to_beat) const;
     bool odt_point(Point& out) const;
     bool ball_valid(VertexId v) const;
 
@@ -61,13 +61,21 @@ double Smoother::min_quality(double floor) const {
     return q;
 }
 
-// The sum of the ball's qualities; -1 as soon as one is below `floor`.
-double Smoother::sum_quality(double floor) const {
+// The sum of the ball's qualities; -1 as soon as one is below `floor`, or
+// as soon as the sum cannot exceed `to_beat` even if every tetrahedron
+// left scored 1 (radius ratios are at most 1; the margin covers the
+// rounding of the sums, so a candidate cut short here would not have
+// beaten `to_beat` either).
+double Smoother::sum_quality(double floor, double to_beat) const {
+    const double reachable = to_beat * (1 - 1e-9);
     double sum = 0;
+    double left = static_cast<double>(ball_.size());
     for (TetId t : ball_) {
         const double q = radius_ratio(m_, t);
         if (q < floor) return -1;
         sum += q;
+        left -= 1;
+        if (sum + left < reachable) return -1;
     }
     return sum;
 }
@@ -203,18 +211,18 @@ bool Smoother::smooth(VertexId v, TetId start) {
         double best_sum = 0;
         for (double q : qualities_) best_sum += q;
         best_sum *= kMeanGain;
+        // The quality first: most candidates do not beat the best so far,
+        // and for those the validity and size tests are not needed.
         for (const Point& p : candidates) {
             m_.set_point(v, p.data());
-            if (!ball_valid(v)) continue;
-            const double sum = sum_quality(floor);
-            if (sum > best_sum) best_sum = sum, best = &p;
+            const double sum = sum_quality(floor, best_sum);
+            if (sum > best_sum && ball_valid(v)) best_sum = sum, best = &p;
         }
     } else {
         for (const Point& p : candidates) {
             m_.set_point(v, p.data());
-            if (!ball_valid(v)) continue;
             const double q = min_quality(best_q);
-            if (q > best_q) best_q = q, best = &p;
+            if (q > best_q && ball_valid(v)) best_q = q, best = &p;
         }
     }
     m_.set_point(v, best ? best->data() : here.data());
