@@ -39,7 +39,7 @@ bool unit_edges(const double* a, const double* b, const double* c, const double*
 // q from the edges u, v, w at one corner; false (q not set) when the
 // products, of six lengths, leave the range where double keeps its full
 // precision.
-bool radius_ratio_of(const V& u, const V& v, const V& w, double& q) {
+[[gnu::always_inline]] inline bool radius_ratio_of(const V& u, const V& v, const V& w, double& q) {
     const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
     const double det = dot(u, vw);  // 6 x signed volume
     // r_in = |det| / (2 S), S = sum of face areas; r_circ = |N| / (2 |det|).
