@@ -212,7 +212,9 @@ bool Smoother::smooth(VertexId v, TetId start) {
         for (double q : qualities_) best_sum += q;
         best_sum *= kMeanGain;
         // The quality first: most candidates do not beat the best so far,
-        // and for those the validity and size tests are not needed.
+        // and for those the validity and size tests are not needed. A
+        // winner still needs them: the radius ratio is unsigned, so an
+        // inverted ball scores too (the same holds in the loop below).
         for (const Point& p : candidates) {
             m_.set_point(v, p.data());
             const double sum = sum_quality(floor, best_sum);
