@@ -331,6 +331,25 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     std::set<TetId> region(ball.begin(), ball.end());
     std::vector<Tet> original;
     for (TetId t : ball) original.push_back(tet_of(m, t));
+    // A failed attempt leaves the mesh bit for bit as it found it (slots,
+    // flags and free list: the mesh's journal), so that trying it again on
+    // an unchanged ball fails again (suppress_vertices skips such tries).
+    // Inside a caller's open journal, the ball is put back by replace_tets
+    // instead (same tetrahedra, other slots).
+    struct Journal {
+        TetMesh& m;
+        const bool mine;
+        explicit Journal(TetMesh& mesh) : m(mesh), mine(!mesh.journal_open()) {
+            if (mine) m.open_journal();
+        }
+        ~Journal() {
+            if (mine) m.close_journal();
+        }
+    } journal(m);
+    auto roll_back = [&](const std::set<TetId>& now) {
+        if (journal.mine) m.undo_journal();
+        else rollback(m, now, original, &rep.created);
+    };
 
     bool done = false;
     if (options.contraction && contract(m, v, ball, region, rep.min_quality)) {
@@ -339,7 +358,7 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     } else if (options.flips) {
         done = flip_down(m, v, region, options, rep);
         if (done) rep.method = SuppressMethod::kFlips;
-        else if (rep.flips > 0) rollback(m, region, original, &rep.created);
+        else if (rep.flips > 0) roll_back(region);
     }
     if (!done) {
         rep.result = SuppressResult::kNoRetriangulation;
@@ -351,7 +370,7 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     if (options.accept && !options.accept(m, rep.created)) {
         const std::set<TetId> now(rep.created.begin(), rep.created.end());
         rep.created.clear();
-        rollback(m, now, original, &rep.created);
+        roll_back(now);
         rep.result = SuppressResult::kRefused;
         rep.method = SuppressMethod::kNone;
         return false;
@@ -359,18 +378,69 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     return true;
 }
 
+namespace {
+
+// What a suppression attempt at v reads of the mesh: the tetrahedra of
+// Ball(v), each as its vertices (stored order) and constraint marks,
+// sorted. Every step of an attempt stays inside the ball (see the top of
+// this file), and a refused attempt puts the ball back; so an attempt
+// that failed fails again while this is unchanged.
+using BallState = std::vector<std::array<VertexId, 5>>;
+
+BallState ball_state(const TetMesh& m, VertexId v, TetId t, std::vector<TetId>& scratch) {
+    BallState state;
+    if (!mesh::ball(m, v, t, scratch)) return state;
+    state.reserve(scratch.size());
+    for (TetId x : scratch) {
+        VertexId marks = 0;
+        for (int f = 0; f < 4; ++f)
+            if (m.is_constrained(x, f)) marks |= 1u << f;
+        state.push_back({m.vertex(x, 0), m.vertex(x, 1), m.vertex(x, 2), m.vertex(x, 3), marks});
+    }
+    std::sort(state.begin(), state.end());
+    return state;
+}
+
+}  // namespace
+
 std::size_t suppress_vertices(TetMesh& m, std::vector<VertexId>& steiner, const mesh::EdgeProtect& protect,
                               SuppressStats* stats, const SuppressOptions& options) {
     SuppressStats local;
     SuppressStats& st = stats ? *stats : local;
     std::size_t total = 0;
     std::vector<TetId> start = mesh::incident_tets(m);
+    // The points the last pass kept, in order, each with its ball as the
+    // failed attempt left it and the reason. A later pass does not try
+    // again a point whose ball is unchanged: the attempt would fail the
+    // same way (suppress_vertex reads nothing else, and a failure leaves
+    // the mesh bit for bit as it was; with a journal of the caller's
+    // open, the ball comes back in other slots, so every point is tried).
+    // On the feeder body the second and later passes were nearly all such
+    // repeats, each as costly as the first failure.
+    struct Failure {
+        VertexId v;
+        BallState ball;
+        SuppressResult why;
+    };
+    const bool skip = options.skip_unchanged_balls && !m.journal_open();
+    std::vector<Failure> failed, failed_now;
+    std::vector<TetId> scratch;
+    auto count_kept = [&st](SuppressResult why) {
+        switch (why) {
+            case SuppressResult::kHullVertex: ++st.kept_hull; break;
+            case SuppressResult::kOnConstraint: ++st.kept_on_constraint; break;
+            case SuppressResult::kProtectedEdge: ++st.kept_protected; break;
+            default: ++st.kept_no_retriangulation; break;
+        }
+    };
     bool progress = true;
     while (progress && !steiner.empty()) {
         progress = false;
         ++st.passes;
         st.kept_hull = st.kept_on_constraint = st.kept_protected = st.kept_no_retriangulation = 0;
         std::vector<VertexId> kept;
+        failed_now.clear();
+        std::size_t next_failed = 0;  // `failed` lists its points in the order of `steiner`
         for (VertexId v : steiner) {
             if (v >= start.size()) continue;  // not a vertex of the mesh
             TetId t = start[v];
@@ -380,6 +450,14 @@ std::size_t suppress_vertices(TetMesh& m, std::vector<VertexId>& steiner, const 
                 start = mesh::incident_tets(m);
                 t = start[v];
                 if (t == mesh::kNoTet) continue;
+            }
+            while (next_failed < failed.size() && failed[next_failed].v != v) ++next_failed;
+            if (next_failed < failed.size() && failed[next_failed].ball == ball_state(m, v, t, scratch)) {
+                kept.push_back(v);
+                count_kept(failed[next_failed].why);
+                ++st.skipped;
+                failed_now.push_back(std::move(failed[next_failed]));
+                continue;
             }
             SuppressReport rep;
             if (suppress_vertex(m, v, t, protect, &rep, options)) {
@@ -394,18 +472,15 @@ std::size_t suppress_vertices(TetMesh& m, std::vector<VertexId>& steiner, const 
                 continue;
             }
             kept.push_back(v);
-            switch (rep.result) {
-                case SuppressResult::kHullVertex: ++st.kept_hull; break;
-                case SuppressResult::kOnConstraint: ++st.kept_on_constraint; break;
-                case SuppressResult::kProtectedEdge: ++st.kept_protected; break;
-                default: ++st.kept_no_retriangulation; break;
-            }
-            // A refused attempt may have moved the ball's slots (flips
-            // undone, rollback): the restored tetrahedra are in rep.created.
+            count_kept(rep.result);
+            // Under a caller's journal a refused attempt puts the ball back
+            // in other slots, listed in rep.created.
             for (TetId k : rep.created)
                 for (int i = 0; i < 4; ++i)
                     if (m.vertex(k, i) != kGhostVertex) start[m.vertex(k, i)] = k;
+            if (skip) failed_now.push_back({v, ball_state(m, v, start[v], scratch), rep.result});
         }
+        failed.swap(failed_now);
         steiner.swap(kept);
     }
     st.suppressed += total;

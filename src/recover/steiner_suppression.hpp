@@ -55,6 +55,10 @@ struct SuppressOptions {
     // When set, the tetrahedra that fill the ball without v must pass it,
     // or the ball is put back and v stays (kRefused).
     std::function<bool(const mesh::TetMesh&, const std::vector<mesh::TetId>& created)> accept;
+    // suppress_vertices: a pass skips a point whose ball is unchanged since
+    // it failed in the pass before (it would fail again). Skipping changes
+    // nothing but the time: false is there for the test that proves it.
+    bool skip_unchanged_balls = true;
 };
 
 struct SuppressReport {
@@ -65,8 +69,11 @@ struct SuppressReport {
     std::size_t link_flips = 0;        // 2-3 flips of faces at v, kept
     std::size_t flips_undone = 0;      // 2-3 flips undone at once (the look-ahead found no edge removal)
     double min_quality = 0;            // on success: worst tet_quality of the new tetrahedra
-    // On success: the tetrahedra that now fill the old ball; on a refusal
-    // after flips: the original tetrahedra put back (their slots may differ).
+    // On success: the tetrahedra that now fill the old ball. On a failure
+    // or refusal the mesh is as it was, bit for bit, and this is empty;
+    // only when the caller holds the mesh's journal open are the original
+    // tetrahedra put back by replace_tets and listed here (their slots may
+    // differ).
     std::vector<mesh::TetId> created;
 };
 
@@ -96,6 +103,9 @@ struct SuppressStats {
     std::size_t kept_on_constraint = 0;
     std::size_t kept_protected = 0;
     std::size_t kept_no_retriangulation = 0;
+    // Tries skipped: the point's ball was unchanged since its failure in
+    // the pass before (SuppressOptions::skip_unchanged_balls).
+    std::size_t skipped = 0;
 };
 
 // Tries every vertex of `steiner`, in order, in passes repeated while a

@@ -103,9 +103,10 @@ bool Remover::suppress(VertexId v, bool no_worse) {
             done = false;
         }
     }
-    // On success the new tetrahedra fill the ball; on a refusal after
-    // flips, the original ones are back, possibly in other slots. Both are
-    // listed in report.created and lie in the ball's region.
+    // On success the new tetrahedra fill the ball; after putting v back,
+    // the original ones, possibly in other slots. Both are listed in
+    // report.created and lie in the ball's region. (A failed suppression
+    // leaves the mesh as it was and lists nothing.)
     for (TetId t : report.created) {
         c_.set_region(t, region_);
         for (int i = 0; i < 4; ++i) incident_[m_.vertex(t, i)] = t;
