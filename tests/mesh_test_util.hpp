@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
@@ -29,6 +30,23 @@ inline Key3 face_key(const mesh::TetMesh& m, mesh::TetId t, int f) {
 }
 
 inline bool live_finite(const mesh::TetMesh& m, mesh::TetId t) { return !m.is_free(t) && !m.is_ghost(t); }
+
+// All the mesh's arrays, slot by slot (vertices, neighbour links, flags),
+// the free list's length and the coordinates: equal only for the same
+// mesh bit for bit, slots included.
+struct SlotSnapshot {
+    std::vector<std::array<std::uint32_t, 9>> rows;
+    std::size_t free_count = 0;
+    std::vector<double> coords;
+    explicit SlotSnapshot(const mesh::TetMesh& m) : free_count(m.free_count()), coords(m.coordinates()) {
+        for (mesh::TetId t = 0; t < m.slot_count(); ++t)
+            rows.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.neighbor(t, 0),
+                            m.neighbor(t, 1), m.neighbor(t, 2), m.neighbor(t, 3), m.flags(t)});
+    }
+    bool operator==(const SlotSnapshot& o) const {
+        return rows == o.rows && free_count == o.free_count && coords == o.coords;
+    }
+};
 
 inline mesh::TetMesh delaunay_mesh(const std::vector<double>& xyz) {
     delaunay::Delaunay d;

@@ -105,20 +105,7 @@ void mark_face(TetMesh& m, TetId t, int f) {
     m.set_constrained(facet_tet(r), facet_face(r), true);
 }
 
-// All the arrays, slot by slot, for bit-identity checks.
-struct Snapshot {
-    std::vector<std::array<std::uint32_t, 9>> rows;
-    std::size_t free_count = 0;
-    std::vector<double> coords;
-    explicit Snapshot(const TetMesh& m) : free_count(m.free_count()), coords(m.coordinates()) {
-        for (TetId t = 0; t < m.slot_count(); ++t)
-            rows.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.neighbor(t, 0),
-                            m.neighbor(t, 1), m.neighbor(t, 2), m.neighbor(t, 3), m.flags(t)});
-    }
-    bool operator==(const Snapshot& o) const {
-        return rows == o.rows && free_count == o.free_count && coords == o.coords;
-    }
-};
+using Snapshot = cbr::test::SlotSnapshot;
 
 void require_valid(const TetMesh& m) {
     const CheckReport report = check_mesh(m);

@@ -38,6 +38,7 @@ using cbr::test::delaunay_mesh;
 using cbr::test::face_key;
 using cbr::test::Key3;
 using cbr::test::live_finite;
+using cbr::test::SlotSnapshot;
 using cbr::test::locate;
 using cbr::test::Tet;
 using Edge = std::array<VertexId, 2>;
@@ -322,30 +323,6 @@ TEST_CASE("suppression by contraction alone") {
     CHECK(k * 4 >= pts.size() * 3);  // at least 75%
 }
 
-namespace {
-
-// Every slot as stored: free or not, its vertices in order, its neighbour
-// links and its flags (constraint marks): equal only for the same mesh
-// bit for bit, slots included.
-std::vector<std::array<std::uint64_t, 10>> slot_records(const TetMesh& m) {
-    std::vector<std::array<std::uint64_t, 10>> out;
-    for (TetId t = 0; t < m.slot_count(); ++t) {
-        std::array<std::uint64_t, 10> r{};
-        r[0] = m.is_free(t);
-        if (!m.is_free(t)) {
-            for (int i = 0; i < 4; ++i) {
-                r[1 + i] = m.vertex(t, i);
-                r[5 + i] = m.neighbor(t, i);
-                r[9] |= std::uint64_t{m.is_constrained(t, i)} << i;
-            }
-        }
-        out.push_back(r);
-    }
-    return out;
-}
-
-}  // namespace
-
 TEST_CASE("a flip-down that gives up is rolled back exactly") {
     Domain d = convex_domain(13, 40, true);
     const auto pts = insert_points(d.m, cbr::test::random_points(20, 813, 0.05, 0.95));
@@ -355,7 +332,7 @@ TEST_CASE("a flip-down that gives up is rolled back exactly") {
     one_step.max_flip_steps = 1;  // one edge removal, then give up
     std::size_t rolled_back = 0;
     for (VertexId v : pts) {
-        const auto before = slot_records(d.m);
+        const SlotSnapshot before(d.m);
         SuppressReport rep;
         const bool ok = suppress_vertex(d.m, v, any_tet_of(d.m, v), {}, &rep, one_step);
         check_valid(d.m);
@@ -364,7 +341,7 @@ TEST_CASE("a flip-down that gives up is rolled back exactly") {
         CHECK(rep.result == SuppressResult::kNoRetriangulation);
         // The same tetrahedra in the same slots, links and marks included
         // (the mesh's journal): what suppress_vertices' skipping relies on.
-        CHECK(slot_records(d.m) == before);
+        CHECK(SlotSnapshot(d.m) == before);
         CHECK(rep.created.empty());
         rolled_back += rep.flips > 0;
     }
@@ -456,7 +433,7 @@ TEST_CASE("suppress_vertices: skipping the points whose ball is unchanged change
         options.skip_unchanged_balls = skip;
         suppress_vertices(d.m, pts, {}, &st, options);
         check_valid(d.m);
-        return slot_records(d.m);
+        return SlotSnapshot(d.m);
     };
     std::vector<VertexId> with, without;
     SuppressStats sw, so;
