@@ -381,11 +381,12 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
 namespace {
 
 // What a suppression attempt at v reads of the mesh: the tetrahedra of
-// Ball(v), each as its vertices (stored order) and constraint marks,
-// sorted. Every step of an attempt stays inside the ball (see the top of
-// this file), and a refused attempt puts the ball back; so an attempt
+// Ball(v), each as its slot, its vertices (stored order) and its
+// constraint marks, in slot order (the order of the attempt's region).
+// Every step of an attempt stays inside the ball (see the top of this
+// file), and a failed attempt leaves the mesh as it was; so an attempt
 // that failed fails again while this is unchanged.
-using BallState = std::vector<std::array<VertexId, 5>>;
+using BallState = std::vector<std::array<VertexId, 6>>;
 
 BallState ball_state(const TetMesh& m, VertexId v, TetId t, std::vector<TetId>& scratch) {
     BallState state;
@@ -395,7 +396,7 @@ BallState ball_state(const TetMesh& m, VertexId v, TetId t, std::vector<TetId>& 
         VertexId marks = 0;
         for (int f = 0; f < 4; ++f)
             if (m.is_constrained(x, f)) marks |= 1u << f;
-        state.push_back({m.vertex(x, 0), m.vertex(x, 1), m.vertex(x, 2), m.vertex(x, 3), marks});
+        state.push_back({x, m.vertex(x, 0), m.vertex(x, 1), m.vertex(x, 2), m.vertex(x, 3), marks});
     }
     std::sort(state.begin(), state.end());
     return state;
