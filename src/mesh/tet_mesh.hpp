@@ -183,4 +183,24 @@ private:
     } journal_;
 };
 
+// The mesh's journal for one scope: opened here unless one is open
+// already (then the caller's journal covers the changes and owns() is
+// false), closed at the end of the scope however it ends.
+class JournalScope {
+public:
+    explicit JournalScope(TetMesh& m) : m_(m), owns_(!m.journal_open()) {
+        if (owns_) m_.open_journal();
+    }
+    ~JournalScope() {
+        if (owns_) m_.close_journal();
+    }
+    JournalScope(const JournalScope&) = delete;
+    JournalScope& operator=(const JournalScope&) = delete;
+    bool owns() const { return owns_; }
+
+private:
+    TetMesh& m_;
+    const bool owns_;
+};
+
 }  // namespace cbr::mesh

@@ -125,18 +125,15 @@ private:
     // a change was a fifth of the golf ball's run.
     bool recover_or_roll_back(std::size_t i) {
         const FailedSearches::State before = state_;
-        struct Journal {  // closed however the attempt ends
+        const mesh::JournalScope journal(m_);  // flip recovery never runs inside another journal
+        struct IncidentLog {  // closed however the attempt ends
             FlipRecovery& r;
-            explicit Journal(FlipRecovery& f) : r(f) {
-                r.m_.open_journal();
+            explicit IncidentLog(FlipRecovery& f) : r(f) {
                 r.incident_undo_.clear();
                 r.journal_incident_ = true;
             }
-            ~Journal() {
-                r.journal_incident_ = false;
-                r.m_.close_journal();
-            }
-        } journal(*this);
+            ~IncidentLog() { r.journal_incident_ = false; }
+        } log(*this);
         if (recover(i)) return true;
         touched_.clear();  // rolled back: the mesh is as the attempt found it
         if (state_ != before) {

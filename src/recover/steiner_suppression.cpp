@@ -336,18 +336,9 @@ bool suppress_vertex(TetMesh& m, VertexId v, TetId start, const mesh::EdgeProtec
     // an unchanged ball fails again (suppress_vertices skips such tries).
     // Inside a caller's open journal, the ball is put back by replace_tets
     // instead (same tetrahedra, other slots).
-    struct Journal {
-        TetMesh& m;
-        const bool mine;
-        explicit Journal(TetMesh& mesh) : m(mesh), mine(!mesh.journal_open()) {
-            if (mine) m.open_journal();
-        }
-        ~Journal() {
-            if (mine) m.close_journal();
-        }
-    } journal(m);
+    const mesh::JournalScope journal(m);
     auto roll_back = [&](const std::set<TetId>& now) {
-        if (journal.mine) m.undo_journal();
+        if (journal.owns()) m.undo_journal();
         else rollback(m, now, original, &rep.created);
     };
 

@@ -111,9 +111,10 @@ struct SuppressStats {
 // Tries every vertex of `steiner`, in order, in passes repeated while a
 // pass suppresses something (suppressing one point can free its
 // neighbour; a point whose ball did not change since it failed is not
-// tried again, SuppressOptions::skip_unchanged_balls). Suppressed vertices are erased from `steiner` (the others
-// keep their order); vertices found in no tetrahedron are erased too and
-// not counted. Returns the number suppressed. Deterministic.
+// tried again, SuppressOptions::skip_unchanged_balls). Suppressed vertices
+// are erased from `steiner` (the others keep their order); vertices found
+// in no tetrahedron are erased too and not counted. Returns the number
+// suppressed. Deterministic.
 std::size_t suppress_vertices(mesh::TetMesh& m, std::vector<mesh::VertexId>& steiner,
                               const mesh::EdgeProtect& protect = {}, SuppressStats* stats = nullptr,
                               const SuppressOptions& options = {});
