@@ -41,6 +41,7 @@
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
 #include "refine/deepest_point.hpp"
+#include "refine/quality_flips.hpp"
 #include "refine/quality_stats.hpp"
 #include "refine/refine.hpp"
 #include "refine/refine_context.hpp"
@@ -358,6 +359,92 @@ void recover_surface(const Surface& s, Recovered& r) {
     REQUIRE(rr.ok);
     r.steiner = rr.steiner;
     r.region = cbr::recover::classify_regions(r.d.mesh_for_update(), faces).of_tet;
+}
+
+// A regular n-gon prism whose caps are fanned from one rim vertex, as CAD
+// exporters write cylinders (tests/bench/fan_cap_prism.py): long thin cap
+// triangles on cocircular points.
+Surface fan_cap_prism(int n, double radius, double height) {
+    Surface s;
+    const double kTwoPi = 6.283185307179586;
+    for (double z : {0.0, height})
+        for (int i = 0; i < n; ++i)
+            s.xyz.insert(s.xyz.end(), {radius * std::cos(kTwoPi * i / n), radius * std::sin(kTwoPi * i / n), z});
+    for (int i = 1; i + 1 < n; ++i) s.tris.insert(s.tris.end(), {0, i + 1, i});
+    for (int i = 1; i + 1 < n; ++i) s.tris.insert(s.tris.end(), {n, n + i, n + i + 1});
+    for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n;
+        s.tris.insert(s.tris.end(), {i, j, n + j, i, n + j, n + i});
+    }
+    return s;
+}
+
+TEST_CASE("refine: a dihedral angle below a bound caps the radius ratio") {
+    // improve_dihedrals_by_flips skips a tetrahedron by its radius ratio
+    // when that is at least radius_ratio_bound_for_dihedral(angle): the
+    // bound must hold for every shape. Random tetrahedra, flattened toward
+    // a face or squashed along z (slivers, caps, needles), from a fixed
+    // sequence. The largest q / sin(angle / 2) seen here is about 4.8
+    // (flat slivers), so a bound of 4 sin(angle / 2) would fail.
+    std::uint64_t x = 12345;
+    const auto next = [&x] {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(x >> 11) / 9007199254740992.0;  // [0, 1)
+    };
+    double largest = 0;
+    for (int it = 0; it < 30000; ++it) {
+        double p[4][3];
+        for (auto& c : p)
+            for (double& v : c) v = next();
+        const double s = std::pow(10.0, -6 * next());
+        if (it % 3 == 1)  // d toward the centroid of abc
+            for (int k = 0; k < 3; ++k) {
+                const double g = (p[0][k] + p[1][k] + p[2][k]) / 3;
+                p[3][k] = g + s * (p[3][k] - g);
+            }
+        if (it % 3 == 2)
+            for (auto& c : p) c[2] *= s;
+        const double q = cbr::refine::radius_ratio(p[0], p[1], p[2], p[3]);
+        const double angle = cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]);
+        if (!(angle > 0)) continue;
+        const double bound = cbr::refine::radius_ratio_bound_for_dihedral(angle);
+        CHECK(q <= bound * (1 + 1e-9));
+        largest = std::max(largest, q / std::sin(angle * 3.141592653589793 / 360));
+    }
+    MESSAGE("largest q / sin(angle / 2): " << largest);
+    CHECK(largest > 4);  // the families above reach near the bound
+}
+
+TEST_CASE("refine: flips for the smallest dihedral angle raise it") {
+    // Coins whose caps are fanned from one rim vertex keep tetrahedra of
+    // four input points on the thin cap triangles, whose smallest dihedral
+    // angle the radius-ratio flips and smoothing do not raise
+    // (improve_dihedrals_by_flips after the passes does). The checks of
+    // refine_and_check hold either way.
+    cbr::refine::RefineOptions without;
+    without.dihedral_flips = false;
+    const auto bad = [](const Outcome& out) {
+        return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
+    };
+    SUBCASE("a 48-gon coin 60 across and 1 thick") {
+        const Surface coin = fan_cap_prism(48, 30, 1);
+        const Outcome off = refine_and_check(coin, without, 0.05, false, false);
+        const Outcome on = refine_and_check(coin, cbr::refine::RefineOptions{}, 0.05, false, false);
+        MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
+        CHECK(on.quality.dihedral_min_deg > 4 * off.quality.dihedral_min_deg);
+        CHECK(bad(on) <= bad(off));
+    }
+    SUBCASE("thingicsg-cylinder (200-gon, the same shape)") {
+        // TetGen -pYq1.414: 0.35 deg; without these flips 0.21 deg.
+        cbr::test::OffSurface surface;
+        if (!shared_surface("thingicsg-cylinder", surface)) return;
+        const Surface coin{surface.xyz, surface.tris};
+        const Outcome off = refine_and_check(coin, without, 0.005, false);
+        const Outcome on = refine_and_check(coin, cbr::refine::RefineOptions{}, 0.005, false);
+        MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
+        CHECK(on.quality.dihedral_min_deg > 0.5);
+        CHECK(bad(on) <= bad(off));
+    }
 }
 
 TEST_CASE("refine: the deepest point of an intersection of half-spaces") {

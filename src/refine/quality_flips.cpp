@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -29,23 +30,47 @@ constexpr double kGain = 1.0 + 1e-3;
 // triangulation is O(n^3)).
 constexpr std::size_t kMaxShell = 7;
 
+// What a sweep maximizes: the smallest `value` over the tetrahedra a flip
+// replaces against the smallest over those it makes; `oriented` is the
+// same with -infinity for a tetrahedron that is not positively oriented
+// (how a ring triangulation is judged, mesh::RingObjective).
+struct FlipMeasure {
+    using Function = double (*)(const double*, const double*, const double*, const double*);
+    Function value;
+    Function oriented;
+};
+double unoriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {
+    return radius_ratio(a, b, c, d);
+}
+constexpr FlipMeasure kRadiusRatio{unoriented_radius_ratio, oriented_radius_ratio};
+constexpr FlipMeasure kMinDihedral{min_dihedral, oriented_min_dihedral};
+
 class Flipper {
 public:
-    explicit Flipper(RefineContext& c) : c_(c), m_(c.m) {}
+    // `radius_ratio_floor`: a flip may not make a tetrahedron whose radius
+    // ratio is below both this and the worst of those it replaces (0: no
+    // condition).
+    Flipper(RefineContext& c, const FlipMeasure& measure, double radius_ratio_floor = 0)
+        : c_(c), m_(c.m), measure_(measure), radius_ratio_floor_(radius_ratio_floor) {
+        objective_.measure = measure.oriented;
+    }
     bool try_edge(TetId t, VertexId u, VertexId v);
     bool remove_edge(TetId t, VertexId u, VertexId v);
     bool try_face(TetId t, int f);
     double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
-        return radius_ratio(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
+        return measure_.value(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
     }
-    // A tetrahedron's radius ratio, computed once per sweep: every
-    // tetrahedron below the threshold rates the shells of its six edges,
-    // each of which rates its own tetrahedra again (octocat: radius ratios
-    // were a sixth of the sweep's time).
+    // A tetrahedron's measure, computed once per sweep: every tetrahedron
+    // below the threshold rates the shells of its six edges, each of which
+    // rates its own tetrahedra again (octocat: radius ratios were a sixth
+    // of the sweep's time).
     double q(TetId t) {
         if (t >= quality_.size()) quality_.resize(m_.slot_count(), kUnknown);
         double& known = quality_[t];
-        if (known == kUnknown) known = radius_ratio(m_, t);
+        if (known == kUnknown) {
+            const VertexId* w = m_.vertices(t);
+            known = q(w[0], w[1], w[2], w[3]);
+        }
         return known;
     }
 
@@ -66,9 +91,17 @@ private:
                     if (bool* refused = refused_.find(key(w[i], w[j]))) *refused = false;
         }
     }
+    // Whether the tetrahedra `made` keep radius_ratio_floor_ against the
+    // tetrahedra `replaced` (corner quadruples of m_).
+    template <typename Replaced, typename Made>
+    bool keeps_radius_ratio(const Replaced& replaced, const Made& made) const;
+
     RefineContext& c_;
     mesh::TetMesh& m_;
-    // Per slot: the radius ratio of the tetrahedron in it, or kUnknown.
+    const FlipMeasure measure_;
+    const double radius_ratio_floor_;
+    // Per slot: the measure of the tetrahedron in it, or kUnknown (no
+    // measure is negative).
     static constexpr double kUnknown = -1;
     std::vector<double> quality_;
     // Edges whose removal was refused in this sweep and whose shell has not
@@ -80,8 +113,9 @@ private:
     // remove_edge's scratch, kept across calls.
     mesh::Shell shell_;
     std::vector<mesh::RingTriangle> triangles_;
-    // What remove_edge asks of a ring triangulation: the best worst radius
-    // ratio, the measure a flip is judged by, searched only above the bar
+    std::vector<std::array<VertexId, 4>> made_;
+    // What remove_edge asks of a ring triangulation: the best worst value
+    // of the measure a flip is judged by, searched only above the bar
     // it must beat (floor, set per shell): most shells cannot beat it
     // (igea: 146 thousand of a million triangulable shells flip in the
     // first pass, 14 thousand of 670 thousand in the third), and the
@@ -108,7 +142,7 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     mesh::Shell& s = shell_;
     if (!mesh::shell(m_, u, v, t, s, kMaxShell) || s.size() < 3 || s.has_ghost()) return false;
     const std::int32_t region = c_.region(t);
-    double old_min = 1;
+    double old_min = std::numeric_limits<double>::infinity();
     for (TetId x : s.tets) {
         if (!c_.in_domain(x) || c_.region(x) != region) return false;
         old_min = std::min(old_min, q(x));
@@ -116,6 +150,17 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     std::vector<mesh::RingTriangle>& tris = triangles_;
     objective_.floor = old_min * kGain;
     if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr, objective_)) return false;
+    if (radius_ratio_floor_ > 0) {
+        std::vector<std::array<VertexId, 4>>& made = made_;
+        made.clear();
+        for (const mesh::RingTriangle& r : tris) {
+            const VertexId a = s.ring[static_cast<std::size_t>(r[0])], b = s.ring[static_cast<std::size_t>(r[1])],
+                           d = s.ring[static_cast<std::size_t>(r[2])];
+            made.push_back({a, b, d, v});
+            made.push_back({a, d, b, u});
+        }
+        if (!keeps_radius_ratio(s.tets, made)) return false;
+    }
     std::vector<TetId> created;
     if (mesh::transform_shell(m_, u, v, s, tris, &created) != mesh::FlipResult::kDone) return false;
     adopt(created, region);
@@ -142,29 +187,72 @@ bool Flipper::try_face(TetId t, int f) {
     if (turn[0] == 0 || turn[1] != turn[0] || turn[2] != turn[0]) return false;
     if (!c_.edge_within_size(d, e)) return false;
     const double old_min = std::min(q(t), q(n));
-    double new_min = 1;
+    double new_min = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 3; ++i) new_min = std::min(new_min, q(x[i], x[(i + 1) % 3], d, e));
     if (new_min <= old_min * kGain) return false;
+    if (radius_ratio_floor_ > 0) {
+        const TetId replaced[2] = {t, n};
+        const std::array<VertexId, 4> made[3] = {
+            {x[0], x[1], d, e}, {x[1], x[2], d, e}, {x[2], x[0], d, e}};
+        if (!keeps_radius_ratio(replaced, made)) return false;
+    }
     std::vector<TetId> created;
     if (mesh::flip23(m_, t, f, {}, &created) != mesh::FlipResult::kDone) return false;
     adopt(created, region);
     return true;
 }
 
-}  // namespace
+template <typename Replaced, typename Made>
+bool Flipper::keeps_radius_ratio(const Replaced& replaced, const Made& made) const {
+    double worst = radius_ratio_floor_;
+    for (TetId t : replaced) worst = std::min(worst, radius_ratio(m_, t));
+    for (const std::array<VertexId, 4>& w : made)
+        if (radius_ratio(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) < worst) return false;
+    return true;
+}
 
-std::size_t improve_by_flips(RefineContext& c, double threshold) {
-    Flipper flipper(c);
+// One sweep of `flipper` over the tetrahedra of the bounded regions that
+// `wanted` picks: the edge removals of each one's six edges, then the 2-3
+// flips across its faces, until one is done.
+template <typename Wanted>
+std::size_t sweep(RefineContext& c, Flipper& flipper, Wanted wanted) {
     std::size_t flips = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
-        if (!c.in_domain(t) || !c.changed_near(t) || flipper.q(t) >= threshold) continue;
+        if (!c.in_domain(t) || !wanted(t)) continue;
         bool done = false;
         for (int i = 0; i < 4 && !done; ++i)
             for (int j = i + 1; j < 4 && !done; ++j)
                 done = flipper.try_edge(t, c.m.vertex(t, i), c.m.vertex(t, j));
         for (int f = 0; f < 4 && !done; ++f) done = flipper.try_face(t, f);
         flips += done;
+    }
+    return flips;
+}
+
+}  // namespace
+
+std::size_t improve_by_flips(RefineContext& c, double threshold) {
+    Flipper flipper(c, kRadiusRatio);
+    return sweep(c, flipper, [&](TetId t) { return c.changed_near(t) && flipper.q(t) < threshold; });
+}
+
+std::size_t improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
+                                       int max_sweeps) {
+    // The radius ratio first: cheaper, and most tetrahedra are above the
+    // bound it puts on the angle.
+    const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
+    std::size_t flips = 0;
+    for (int k = 0; k < max_sweeps; ++k) {
+        // The first sweep looks at every tetrahedron (none was tried for
+        // its angles before), the next ones where the last one flipped.
+        c.start_pass();
+        Flipper flipper(c, kMinDihedral, keep_radius_ratio);
+        const std::size_t done = sweep(c, flipper, [&](TetId t) {
+            return (k == 0 || c.changed_near(t)) && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
+        });
+        flips += done;
+        if (done == 0) break;
     }
     return flips;
 }

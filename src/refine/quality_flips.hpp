@@ -22,4 +22,16 @@ namespace cbr::refine {
 // the number of flips done.
 std::size_t improve_by_flips(RefineContext& c, double threshold);
 
+// The same flips judged by the smallest dihedral angle instead (Table II's
+// minimum dihedral angle, which the radius ratio does not always follow):
+// sweeps over the tetrahedra with a dihedral angle below `below_degrees`,
+// the first over all of them, the next over those near the last sweep's
+// flips, at most `max_sweeps`; returns the number of flips done. Each
+// flip raises the smallest angle among the tetrahedra it replaces, so
+// the mesh's smallest angle never falls; and it makes no tetrahedron whose
+// radius ratio is below both `keep_radius_ratio` and the worst of those
+// it replaces (the angle and the radius ratio can move apart).
+std::size_t improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
+                                       int max_sweeps);
+
 }  // namespace cbr::refine

@@ -20,6 +20,12 @@ constexpr double kFlipThreshold = 0.7;
 // Tetrahedra below this radius ratio that flips and smoothing leave get a
 // point with a chosen cavity (sliver_removal.hpp); Table II counts them bad.
 constexpr double kSliverThreshold = 0.1;
+// After the passes, flips for the smallest dihedral angles (Table II's
+// minimum, which radius-ratio flips and smoothing leave where they cannot
+// raise the radius ratio): the tetrahedra below this angle, in at most
+// this many sweeps.
+constexpr double kDihedralFlipsBelow = 5.0;
+constexpr int kDihedralFlipSweeps = 8;
 // Passes beyond options.optimisation_passes while the Steiner points still
 // have bad tetrahedra and the last pass suppressed or relocated one.
 constexpr int kExtraSteinerPasses = 5;
@@ -59,6 +65,8 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         stats.sliver_points += slivers;
         if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
+    if (options.flips && options.dihedral_flips)
+        stats.flips += improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold, kDihedralFlipSweeps);
     if (options.slivers) {
         const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold);
         stats.field_points += rescued;

@@ -39,6 +39,7 @@ struct RefineOptions {
     bool slivers = true;  // sliver removal (sliver_removal.hpp)
     bool steiner_suppression = true;  // steiner_removal.hpp
     bool steiner_relocation = true;   // steiner_relocation.hpp
+    bool dihedral_flips = true;       // after the passes (quality_flips.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is

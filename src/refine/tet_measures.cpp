@@ -110,6 +110,19 @@ void dihedral_range(const double* a, const double* b, const double* c, const dou
     max_deg = *std::max_element(deg.begin(), deg.end());
 }
 
+double min_dihedral(const double* a, const double* b, const double* c, const double* d) {
+    double lo = 0, hi = 0;
+    dihedral_range(a, b, c, d, lo, hi);
+    return lo;
+}
+
+double oriented_min_dihedral(const double* a, const double* b, const double* c, const double* d) {
+    if (geom::orient3d(a, b, c, d) <= 0) return -std::numeric_limits<double>::infinity();
+    return min_dihedral(a, b, c, d);
+}
+
+double radius_ratio_bound_for_dihedral(double degrees) { return 6 * std::sin(degrees * (kPi / 360)); }
+
 bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre) {
     const V u = sub(b, a), v = sub(c, a), w = sub(d, a);
     const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);

@@ -49,6 +49,18 @@ bool dihedral_angles(const double* a, const double* b, const double* c, const do
 void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
                     double& max_deg);
 
+// The smallest dihedral angle of abcd, in degrees (0 when it has no extent
+// in double); oriented_min_dihedral: the same when abcd is positively
+// oriented (exact), else -infinity (a mesh::RingObjective measure).
+double min_dihedral(const double* a, const double* b, const double* c, const double* d);
+double oriented_min_dihedral(const double* a, const double* b, const double* c, const double* d);
+
+// An upper bound on the radius ratio of a tetrahedron with a dihedral
+// angle below `degrees` (0 < degrees <= 180): 6 sin(degrees / 2). The
+// insphere lies in the wedge of that angle, so r_in <= L sin(angle / 2),
+// L the longest edge, and r_circ >= L / 2.
+double radius_ratio_bound_for_dihedral(double degrees);
+
 // Circumcentre of abcd; false when the tetrahedron is flat in double.
 bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre);
 
