@@ -1,10 +1,11 @@
 // Quality-improving flips of the interior (Du & Wang 2004, §6 step (e):
 // "optimize the mesh with local ... topological operations"): 2-3 flips
 // and edge removals (3-2, 4-4 and larger shells, mesh/flips.hpp), each done
-// only when the smallest radius ratio of the tetrahedra it replaces grows.
-// An edge removal takes the ring triangulation with the best smallest
-// radius ratio among those whose chords keep the size bound
-// (mesh::RingObjective).
+// only when the smallest radius ratio of the tetrahedra it replaces grows
+// (improve_by_flips), or their smallest dihedral angle
+// (improve_dihedrals_by_flips). An edge removal takes the ring
+// triangulation with the best smallest value of that measure among those
+// whose chords keep the size bound (mesh::RingObjective).
 // A constraint face is never removed (no face through a surface edge is
 // touched; replace_tets refuses it anyway), the exterior is not changed,
 // and no new edge breaks the size bound.
