@@ -41,7 +41,6 @@
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
 #include "refine/deepest_point.hpp"
-#include "refine/quality_flips.hpp"
 #include "refine/quality_stats.hpp"
 #include "refine/refine.hpp"
 #include "refine/refine_context.hpp"
