@@ -39,10 +39,7 @@ struct FlipMeasure {
     Function value;
     Function oriented;
 };
-double unoriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {
-    return radius_ratio(a, b, c, d);
-}
-constexpr FlipMeasure kRadiusRatio{unoriented_radius_ratio, oriented_radius_ratio};
+constexpr FlipMeasure kRadiusRatio{static_cast<FlipMeasure::Function>(radius_ratio), oriented_radius_ratio};
 constexpr FlipMeasure kMinDihedral{min_dihedral, oriented_min_dihedral};
 
 class Flipper {
