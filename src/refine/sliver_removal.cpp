@@ -90,6 +90,7 @@ private:
         marks_.set(t, kInCavity);
     }
     void collect_boundary();
+    bool no_star_beats(double bar) const;
     double star_quality(const double* p, double floor) const;
     void add_candidates(TetId sliver);
     TetId containing(const double* p) const;
@@ -118,6 +119,19 @@ void SliverRemover::collect_boundary() {
             boundary_.push_back({{m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]])}});
         }
     }
+}
+
+// Whether no point at all has a star over the cavity's boundary whose
+// worst radius ratio beats `bar`: a boundary face caps every tetrahedron
+// on it (radius_ratio_bound_for_face). A needle face, often an input
+// triangle of a thin CAD wall, caps its stars below the bar of the sliver
+// beside it; rating the candidates would only confirm it (feeder body:
+// 69% of the shells and 21% of the ring cavities end here, the mesh byte
+// for byte the same). The margin covers the rounding of both measures.
+bool SliverRemover::no_star_beats(double bar) const {
+    return std::any_of(boundary_.begin(), boundary_.end(), [&](const BoundaryFace& f) {
+        return radius_ratio_bound_for_face(f.corners[0], f.corners[1], f.corners[2]) * (1 + 1e-6) <= bar;
+    });
 }
 
 // The worst radius ratio of the star of p over the cavity's boundary; -1
@@ -198,9 +212,10 @@ TetId SliverRemover::containing(const double* p) const {
 void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
                                 Choice& best, const Point* kernel_from) {
     collect_boundary();
+    const double bar = std::max(gain * old_min, floor);
+    if (no_star_beats(std::max(bar, best.quality))) return;
     add_candidates(sliver);
     if (kernel_from && !add_deepest_candidate(*kernel_from)) return;
-    const double bar = std::max(gain * old_min, floor);
     // The best candidate with a valid star, then climbed (climb).
     double q_start = 0;
     Point start = {0, 0, 0};

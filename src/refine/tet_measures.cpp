@@ -123,6 +123,24 @@ double oriented_min_dihedral(const double* a, const double* b, const double* c, 
 
 double radius_ratio_bound_for_dihedral(double degrees) { return 6 * std::sin(degrees * (kPi / 360)); }
 
+// 3 r / R = 3 (A / s) / (xyz / 4A) = 24 A^2 / (perimeter xyz), x, y, z the
+// edge lengths, A^2 = |(b - a) x (c - a)|^2 / 4; with the perimeter taken
+// as twice the longest edge L (at most 1.5 times too small, and exact in
+// the limit on needles and flat caps, the faces for which the bound is
+// small): 3 |n|^2 / (L xyz), one square root. Squares are divided by L^2
+// so that nothing overflows. 1.5 (no information) when the triangle has
+// no extent in double.
+double radius_ratio_bound_for_face(const double* a, const double* b, const double* c) {
+    const V u = sub(b, a), w = sub(c, a);
+    const double x2 = dot(u, u), y2 = dot(sub(w, u), sub(w, u)), z2 = dot(w, w);
+    const double longest2 = std::max({x2, y2, z2});
+    if (!(longest2 > 0) || !std::isfinite(longest2)) return 1.5;
+    const V n = cross(mul(u, 1 / longest2), w);  // |n| / L^2
+    const double product = (x2 / longest2) * (y2 / longest2) * (z2 / longest2);  // (xyz / L^3)^2
+    if (!(product > 0)) return 1.5;
+    return std::min(1.5, 3 * dot(n, n) / std::sqrt(product));
+}
+
 bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre) {
     const V u = sub(b, a), v = sub(c, a), w = sub(d, a);
     const V vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);

@@ -61,6 +61,18 @@ double oriented_min_dihedral(const double* a, const double* b, const double* c, 
 // L the longest edge, and r_circ >= L / 2.
 double radius_ratio_bound_for_dihedral(double degrees);
 
+// An upper bound on the radius ratio of every tetrahedron with face abc,
+// whatever its fourth corner: 3 r / R of the triangle (r, R its in- and
+// circumradius), 1.5 for the equilateral triangle, near 0 for a needle.
+// Every cross-section of the tetrahedron parallel to abc is a scaled-down
+// copy of abc, so the insphere's largest disk fits in one and r_in <= r;
+// the circumsphere holds a, b and c, so r_circ >= R. Computed with the
+// perimeter taken as twice the longest edge (a larger bound, up to 1.5
+// times for fat triangles, the same in the limit for needles and flat
+// caps). Tight: tetrahedra on needle faces come within 1e-3 of it
+// (test_refine).
+double radius_ratio_bound_for_face(const double* a, const double* b, const double* c);
+
 // Circumcentre of abcd; false when the tetrahedron is flat in double.
 bool circumcentre(const double* a, const double* b, const double* c, const double* d, Point& centre);
 
