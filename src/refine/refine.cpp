@@ -56,7 +56,7 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             options.steiner_suppression ? remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped) : 0;
         const std::size_t relocated =
             options.steiner_relocation ? relocate_steiner_points(c, steiner, kSliverThreshold) : 0;
-        const std::size_t slivers = options.slivers ? remove_slivers(c, kSliverThreshold) : 0;
+        const std::size_t slivers = options.slivers ? remove_slivers(c, kSliverThreshold, stats) : 0;
         steiner_progress = suppressed > 0 || relocated > 0;
         stats.steiner_relocated += relocated;
         stats.flips += flips;
@@ -68,7 +68,7 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
     if (options.flips && options.dihedral_flips)
         stats.flips += improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold, kDihedralFlipSweeps);
     if (options.slivers) {
-        const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold);
+        const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold, stats);
         stats.field_points += rescued;
         stats.sliver_points += rescued;
     }

@@ -40,6 +40,7 @@ struct RefineOptions {
     bool steiner_suppression = true;  // steiner_removal.hpp
     bool steiner_relocation = true;   // steiner_relocation.hpp
     bool dihedral_flips = true;       // after the passes (quality_flips.hpp)
+    bool sliver_face_bound = true;    // sliver removal's skip by a face's bound (same mesh either way)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -63,6 +64,7 @@ struct RefineStats {
     std::size_t flips = 0;              // quality flips done (2-3 and edge removals)
     std::size_t smoothed = 0;           // vertex moves accepted
     std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
+    std::size_t sliver_cavities_skipped = 0;  // cavities sliver removal did not rate (a face's bound)
     std::size_t steiner_suppressed = 0; // Steiner points suppressed after refinement (steiner_removal.hpp)
     std::size_t steiner_relocated = 0;  // Steiner points moved with their neighbourhood (steiner_relocation.hpp)
 };

@@ -56,6 +56,8 @@ public:
     SliverRemover(RefineContext& c, double threshold) : c_(c), m_(c.m), threshold_(threshold) {}
     bool remove(TetId sliver);
     bool rescue(TetId sliver);
+    // Cavities not rated: a boundary face caps every star (no_star_beats).
+    std::size_t skipped() const { return skipped_; }
 
 private:
     struct Choice {
@@ -106,6 +108,7 @@ private:
     std::vector<Point> candidates_;
     mesh::Shell shell_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
+    std::size_t skipped_ = 0;
 };
 
 void SliverRemover::collect_boundary() {
@@ -213,7 +216,10 @@ void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, doub
                                 Choice& best, const Point* kernel_from) {
     collect_boundary();
     const double bar = std::max(gain * old_min, floor);
-    if (no_star_beats(std::max(bar, best.quality))) return;
+    if (c_.options.sliver_face_bound && no_star_beats(std::max(bar, best.quality))) {
+        ++skipped_;
+        return;
+    }
     add_candidates(sliver);
     if (kernel_from && !add_deepest_candidate(*kernel_from)) return;
     // The best candidate with a valid star, then climbed (climb).
@@ -466,22 +472,24 @@ bool SliverRemover::insert(TetId sliver, Choice& best) {
 
 }  // namespace
 
-std::size_t remove_slivers(RefineContext& c, double threshold) {
+std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats) {
     SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
         if (c.in_domain(t) && c.changed_near(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
     }
+    stats.sliver_cavities_skipped += remover.skipped();
     return inserted;
 }
 
-std::size_t rescue_flat_slivers(RefineContext& c, double threshold) {
+std::size_t rescue_flat_slivers(RefineContext& c, double threshold, RefineStats& stats) {
     SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t)
         if (c.in_domain(t)) inserted += remover.rescue(t);
+    stats.sliver_cavities_skipped += remover.skipped();
     return inserted;
 }
 

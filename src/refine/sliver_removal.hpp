@@ -43,8 +43,10 @@ namespace cbr::refine {
 // Tries every tetrahedron of the bounded regions with radius ratio below
 // `threshold` that changed, or has a face neighbour that changed, since the
 // previous pass (RefineContext::changed_near: the others failed then and
-// would fail again); returns the number of points inserted.
-std::size_t remove_slivers(RefineContext& c, double threshold);
+// would fail again); returns the number of points inserted, and adds the
+// cavities it did not rate (a face of their boundary caps every star below
+// the bar: radius_ratio_bound_for_face) to stats.sliver_cavities_skipped.
+std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats);
 
 // The last resort, once, after the optimisation passes: a flat sliver of
 // four input points (radius ratio under 1e-6) that remove_slivers left
@@ -54,7 +56,8 @@ std::size_t remove_slivers(RefineContext& c, double threshold);
 // slivers (needle-shaped input triangles bound every tetrahedron on
 // them), so in the passes they would be taken up again and again and
 // multiply (feeder body: 139,181 -> 155,846 tetrahedra); here nothing
-// revisits them. Returns the number of points inserted.
-std::size_t rescue_flat_slivers(RefineContext& c, double threshold);
+// revisits them. Returns the number of points inserted (skipped cavities
+// counted as by remove_slivers).
+std::size_t rescue_flat_slivers(RefineContext& c, double threshold, RefineStats& stats);
 
 }  // namespace cbr::refine
