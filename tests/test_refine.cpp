@@ -444,8 +444,8 @@ TEST_CASE("refine: a face caps the radius ratio of every tetrahedron on it") {
         const double s = std::pow(10.0, -8 * next());
         for (int k = 0; k < 3; ++k) {
             const double offset = s * (next() - 0.5);
-            if (it % 3 == 1) p[2][k] = p[0][k] + offset;                      // needle
-            if (it % 3 == 2) p[2][k] = 0.5 * (p[0][k] + p[1][k]) + offset;    // cap
+            if (it % 3 == 1) p[2][k] = p[0][k] + offset;                    // needle
+            if (it % 3 == 2) p[2][k] = 0.5 * (p[0][k] + p[1][k]) + offset;  // cap
         }
         const double q = cbr::refine::radius_ratio(p[0], p[1], p[2], p[3]);
         for (const auto& f : kFaces) {

@@ -69,7 +69,7 @@ double radius_ratio_bound_for_dihedral(double degrees);
 // the circumsphere holds a, b and c, so r_circ >= R. Computed with the
 // perimeter taken as twice the longest edge (a larger bound, up to 1.5
 // times for fat triangles, the same in the limit for needles and flat
-// caps). Tight: tetrahedra on needle faces come within 1e-3 of it
+// caps). Tight: tetrahedra on needle faces come within 1e-6 of it
 // (test_refine).
 double radius_ratio_bound_for_face(const double* a, const double* b, const double* c);
 
