@@ -49,6 +49,8 @@ constexpr double kRescueFloor = 1e-4;
 
 struct BoundaryFace {
     std::array<const double*, 3> corners;  // p is on the cavity's side when orient3d(corners, p) > 0
+    TetId tet;                             // the cavity tetrahedron it bounds, and which face of it
+    int face;
 };
 
 class SliverRemover {
@@ -92,6 +94,8 @@ private:
         marks_.set(t, kInCavity);
     }
     void collect_boundary();
+    void grow_boundary(std::size_t first_new);
+    void add_boundary_faces(TetId t);
     bool no_star_beats(double bar) const;
     double star_quality(const double* p, double floor) const;
     void add_candidates(TetId sliver);
@@ -114,14 +118,32 @@ private:
 void SliverRemover::collect_boundary() {
     boundary_.clear();
     blocker_ = 0;
-    for (TetId t : cavity_) {
-        const VertexId* v = m_.vertices(t);
-        for (int f = 0; f < 4; ++f) {
-            if (!m_.is_constrained(t, f) && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
-            const int* k = kFaceVertices[f];
-            boundary_.push_back({{m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]])}});
-        }
+    for (TetId t : cavity_) add_boundary_faces(t);
+}
+
+// t's faces that bound the cavity: constraint faces, and faces whose other
+// side is not in it.
+void SliverRemover::add_boundary_faces(TetId t) {
+    const VertexId* v = m_.vertices(t);
+    for (int f = 0; f < 4; ++f) {
+        if (!m_.is_constrained(t, f) && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
+        const int* k = kFaceVertices[f];
+        boundary_.push_back({{m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]])}, t, f});
     }
+}
+
+// The boundary after cavity_[first_new..] joined the cavity whose boundary
+// boundary_ was: the old faces that now have the cavity on both sides go,
+// the new tetrahedra's outer faces come. The same set of faces as
+// collect_boundary, without going over the older tetrahedra again (the
+// rings of remove(); the order of the faces does not change a rating).
+void SliverRemover::grow_boundary(std::size_t first_new) {
+    blocker_ = 0;
+    const auto now_inner = [&](const BoundaryFace& b) {
+        return !m_.is_constrained(b.tet, b.face) && in_cavity(facet_tet(m_.neighbor(b.tet, b.face)));
+    };
+    boundary_.erase(std::remove_if(boundary_.begin(), boundary_.end(), now_inner), boundary_.end());
+    for (std::size_t i = first_new; i < cavity_.size(); ++i) add_boundary_faces(cavity_[i]);
 }
 
 // Whether no point at all has a star over the cavity's boundary whose
@@ -207,14 +229,14 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
-// Rates every candidate's star over the current cavity_, whose worst
+// Rates every candidate's star over the current cavity_ (whose boundary_
+// the caller has collected), whose worst
 // radius ratio is `old_min`; a star that beats it by `gain`, and beats
 // `floor` and `best`, replaces `best`, with its cavity. With `kernel_from`
 // (a point every boundary face sees), the deepest point of the kernel is a
 // candidate too, and nothing is rated when it cannot be found.
 void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
                                 Choice& best, const Point* kernel_from) {
-    collect_boundary();
     const double bar = std::max(gain * old_min, floor);
     if (c_.options.sliver_face_bound && no_star_beats(std::max(bar, best.quality))) {
         ++skipped_;
@@ -308,6 +330,7 @@ void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice&
         const double* pa = m_.point(a);
         const double* pb = m_.point(b);
         const Point middle = {(pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2};
+        collect_boundary();
         rate_cavity(sliver, old_min, rating.floor, rating.gain, Search::kClimb, best,
                     rating.deepest ? &middle : nullptr);
     }
@@ -365,6 +388,7 @@ bool SliverRemover::remove(TetId sliver) {
     marks_.new_round(m_.slot_count());
     cavity_.clear();
     add_to_cavity(sliver);
+    collect_boundary();
     double old_min = radius_ratio(m_, sliver);
     std::size_t newest = 0;  // cavity_[newest..] came with the last reach
     for (int reach = 1; reach <= kMaxReach && best.quality == 0; ++reach) {
@@ -381,6 +405,7 @@ bool SliverRemover::remove(TetId sliver) {
             }
         }
         newest = outer;
+        grow_boundary(outer);
         rate_cavity(sliver, old_min, 0, kSliverGain, Search::kCandidates, best);
     }
     // No ring has a valid star and nothing can move the sliver's corners
