@@ -229,10 +229,10 @@ TetId SliverRemover::containing(const double* p) const {
     return mesh::kNoTet;
 }
 
-// Rates every candidate's star over the current cavity_ (whose boundary_
-// the caller has collected), whose worst
-// radius ratio is `old_min`; a star that beats it by `gain`, and beats
-// `floor` and `best`, replaces `best`, with its cavity. With `kernel_from`
+// Rates every candidate's star over the current cavity_, whose boundary_
+// the caller has collected and whose worst radius ratio is `old_min`; a
+// star that beats it by `gain`, and beats `floor` and `best`, replaces
+// `best`, with its cavity. With `kernel_from`
 // (a point every boundary face sees), the deepest point of the kernel is a
 // candidate too, and nothing is rated when it cannot be found.
 void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
