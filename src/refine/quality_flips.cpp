@@ -44,6 +44,7 @@ constexpr FlipMeasure kMinDihedral{min_dihedral, oriented_min_dihedral};
 
 class Flipper {
 public:
+    using Corners = std::array<VertexId, 4>;
     // `radius_ratio_floor`: a flip may not make a tetrahedron whose radius
     // ratio is below both this and the worst of those it replaces (0: no
     // condition).
@@ -53,7 +54,16 @@ public:
     }
     bool try_edge(TetId t, VertexId u, VertexId v);
     bool remove_edge(TetId t, VertexId u, VertexId v);
+    bool remove_edge_after_another(TetId t, VertexId u, VertexId v);
     bool try_face(TetId t, int f);
+    // Whether try_edge may remove another edge first
+    // (remove_edge_after_another), and how many such pairs it did.
+    bool after_another = false;
+    std::size_t after_another_done = 0;
+    // For tests (improve_dihedrals_by_flips' log): the corners of the
+    // tetrahedra each flip replaced, noted before it changes the mesh, and
+    // of those it made.
+    std::vector<FlipRecord>* log = nullptr;
     double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
         return measure_.value(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
     }
@@ -76,9 +86,21 @@ private:
         if (a > b) std::swap(a, b);
         return (std::uint64_t{a} << 32) | b;
     }
+    template <typename Tets>
+    void note_replaced(const Tets& tets) {
+        if (log)
+            for (TetId t : tets) replacing_.push_back(corners(t));
+    }
+    Corners corners(TetId t) const { return {m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3)}; }
     // The new tetrahedra join the region; the edges around them have new
     // shells, so an edge removal refused there may now be possible.
     void adopt(const std::vector<TetId>& created, std::int32_t region) {
+        if (log) {
+            FlipRecord record;
+            record.replaced.swap(replacing_);
+            for (TetId t : created) record.made.push_back(corners(t));
+            log->push_back(std::move(record));
+        }
         for (TetId t : created) {
             c_.set_region(t, region);
             if (t < quality_.size()) quality_[t] = kUnknown;  // a new tetrahedron in a slot used before
@@ -88,6 +110,11 @@ private:
                     if (bool* refused = refused_.find(key(w[i], w[j]))) *refused = false;
         }
     }
+    // Whether every tetrahedron of shell s is in the domain's `region`;
+    // `worst` then falls to the smallest measure among them.
+    bool shell_in_region(const mesh::Shell& s, std::int32_t region, double& worst);
+    bool undo_unless_better(VertexId u, VertexId v, double worst, double worst_radius_ratio,
+                            const std::vector<TetId>& first, std::int32_t region);
     // Whether the tetrahedra `made` keep radius_ratio_floor_ against the
     // tetrahedra `replaced` (corner quadruples of m_).
     template <typename Replaced, typename Made>
@@ -110,7 +137,8 @@ private:
     // remove_edge's scratch, kept across calls.
     mesh::Shell shell_;
     std::vector<mesh::RingTriangle> triangles_;
-    std::vector<std::array<VertexId, 4>> made_;
+    std::vector<Corners> made_;
+    std::vector<Corners> replacing_;  // note_replaced
     // What remove_edge asks of a ring triangulation: the best worst value
     // of the measure a flip is judged by, searched only above the bar
     // it must beat (floor, set per shell): most shells cannot beat it
@@ -128,7 +156,7 @@ private:
 bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
     if (c_.is_surface_edge(u, v)) return false;
     if (const bool* refused = refused_.find(key(u, v)); refused && *refused) return false;
-    if (!remove_edge(t, u, v)) {
+    if (!remove_edge(t, u, v) && !(after_another && remove_edge_after_another(t, u, v))) {
         refused_[key(u, v)] = true;
         return false;
     }
@@ -159,9 +187,113 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
         if (!keeps_radius_ratio(s.tets, made)) return false;
     }
     std::vector<TetId> created;
-    if (mesh::transform_shell(m_, u, v, s, tris, &created) != mesh::FlipResult::kDone) return false;
+    note_replaced(s.tets);
+    if (mesh::transform_shell(m_, u, v, s, tris, &created) != mesh::FlipResult::kDone) {
+        replacing_.clear();
+        return false;
+    }
     adopt(created, region);
     return true;
+}
+
+bool Flipper::shell_in_region(const mesh::Shell& s, std::int32_t region, double& worst) {
+    for (TetId x : s.tets) {
+        if (!c_.in_domain(x) || c_.region(x) != region) return false;
+        worst = std::min(worst, q(x));
+    }
+    return true;
+}
+
+// When no triangulation of uv's ring beats its shell, the ring may still
+// be the wrong one: a ring vertex r whose edge to u (or v) is removed
+// first leaves it, and uv's new ring may have a good triangulation. This
+// is the nesting of flip recovery's edge removal (§5.1, one level) for
+// quality. Flat tetrahedra of four input points under two nearly coplanar
+// input triangles, in a layer where every point around is nearly in their
+// plane too, have such shells (thingiverse-chain-link: four tetrahedra
+// around the inner edge of one at 2.5e-6 deg, and neither triangulation
+// of their ring is valid; with the pairs it goes, and the surface's
+// smallest angle is 1.5e-4 deg; wildmeshing-supershape 1.0 -> 5.2 deg).
+// The first removal takes its ring's best triangulation whatever its
+// worst (the second replaces most of it); the pair is kept only when
+// every tetrahedron it leaves beats the worst of all it replaced
+// (undo_unless_better), else the mesh's journal takes both back
+// (refinement never runs inside another journal).
+bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
+    mesh::Shell outer;
+    if (!mesh::shell(m_, u, v, t, outer, kMaxShell) || outer.size() < 3 || outer.has_ghost()) return false;
+    const std::int32_t region = c_.region(t);
+    double outer_worst = std::numeric_limits<double>::infinity();
+    if (!shell_in_region(outer, region, outer_worst)) return false;
+    double outer_radius_ratio = 1;
+    for (TetId x : outer.tets) outer_radius_ratio = std::min(outer_radius_ratio, radius_ratio(m_, x));
+    mesh::RingObjective any_valid = objective_;
+    any_valid.floor = 0;  // the measures are non-negative on valid tetrahedra
+    for (std::size_t i = 0; i < outer.size(); ++i) {
+        const VertexId r = outer.ring[i];
+        for (VertexId end : {u, v}) {
+            if (c_.is_surface_edge(end, r)) continue;
+            mesh::Shell& inner = shell_;
+            double worst = outer_worst;
+            if (!mesh::shell(m_, end, r, outer.tets[i], inner, kMaxShell) || inner.size() < 3 || inner.has_ghost() ||
+                !shell_in_region(inner, region, worst))
+                continue;
+            if (!mesh::best_ring_triangulation(m_, end, r, inner, triangles_, nullptr, any_valid)) continue;
+            double worst_radius_ratio = outer_radius_ratio;
+            for (TetId x : inner.tets) worst_radius_ratio = std::min(worst_radius_ratio, radius_ratio(m_, x));
+            note_replaced(outer.tets);
+            note_replaced(inner.tets);
+            m_.open_journal();
+            std::vector<TetId> first;
+            const bool done = mesh::transform_shell(m_, end, r, inner, triangles_, &first) == mesh::FlipResult::kDone;
+            if (done && undo_unless_better(u, v, worst, worst_radius_ratio, first, region)) {
+                ++after_another_done;
+                return true;
+            }
+            if (!done) {  // nothing changed; the journal is closed as it is opened, in this scope
+                m_.undo_journal();
+                m_.close_journal();
+            }
+            replacing_.clear();
+        }
+    }
+    return false;
+}
+
+// The second removal of remove_edge_after_another, uv's, after the first
+// made `first` (the journal open since before it): kept, and the journal
+// closed, when every tetrahedron the two leave beats `worst` by kGain
+// (and keeps radius_ratio_floor_ against `worst_radius_ratio`, both over
+// all they replaced); else both are undone and the journal closed.
+bool Flipper::undo_unless_better(VertexId u, VertexId v, double worst, double worst_radius_ratio,
+                                 const std::vector<TetId>& first, std::int32_t region) {
+    const auto has = [&](TetId x, VertexId w) {
+        const VertexId* c = m_.vertices(x);
+        return std::find(c, c + 4, w) != c + 4;
+    };
+    const auto at_uv = std::find_if(first.begin(), first.end(), [&](TetId x) { return has(x, u) && has(x, v); });
+    mesh::Shell& second = shell_;
+    objective_.floor = worst * kGain;
+    std::vector<TetId> made;
+    bool better = at_uv != first.end() && mesh::shell(m_, u, v, *at_uv, second, kMaxShell) && second.size() >= 3 &&
+                  !second.has_ghost() &&
+                  mesh::best_ring_triangulation(m_, u, v, second, triangles_, nullptr, objective_) &&
+                  mesh::transform_shell(m_, u, v, second, triangles_, &made) == mesh::FlipResult::kDone;
+    if (better) {
+        // The first removal's tetrahedra that the second left stay too.
+        for (TetId x : first)
+            if (std::find(second.tets.begin(), second.tets.end(), x) == second.tets.end()) made.push_back(x);
+        const double floor = std::min(radius_ratio_floor_, worst_radius_ratio);
+        for (TetId x : made) {
+            const VertexId* w = m_.vertices(x);
+            better = better && q(w[0], w[1], w[2], w[3]) > worst * kGain &&
+                     (radius_ratio_floor_ <= 0 || radius_ratio(m_, x) >= floor);
+        }
+    }
+    if (!better) m_.undo_journal();
+    m_.close_journal();
+    if (better) adopt(made, region);
+    return better;
 }
 
 // 2-3 flip across face f of t: the two tetrahedra become three around the
@@ -194,7 +326,11 @@ bool Flipper::try_face(TetId t, int f) {
         if (!keeps_radius_ratio(replaced, made)) return false;
     }
     std::vector<TetId> created;
-    if (mesh::flip23(m_, t, f, {}, &created) != mesh::FlipResult::kDone) return false;
+    note_replaced(std::array<TetId, 2>{t, n});
+    if (mesh::flip23(m_, t, f, {}, &created) != mesh::FlipResult::kDone) {
+        replacing_.clear();
+        return false;
+    }
     adopt(created, region);
     return true;
 }
@@ -234,21 +370,24 @@ std::size_t improve_by_flips(RefineContext& c, double threshold) {
     return sweep(c, flipper, [&](TetId t) { return c.changed_near(t) && flipper.q(t) < threshold; });
 }
 
-std::size_t improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                       int max_sweeps) {
+DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
+                                         int max_sweeps, std::vector<FlipRecord>* log) {
     // The radius ratio first: cheaper, and most tetrahedra are above the
     // bound it puts on the angle.
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
-    std::size_t flips = 0;
+    DihedralFlips flips;
     for (int k = 0; k < max_sweeps; ++k) {
         // The first sweep looks at every tetrahedron (none was tried for
         // its angles before), the next ones where the last one flipped.
         c.start_pass();
         Flipper flipper(c, kMinDihedral, keep_radius_ratio);
+        flipper.after_another = c.options.edge_removal_after_another;
+        flipper.log = log;
         const std::size_t done = sweep(c, flipper, [&](TetId t) {
             return (k == 0 || c.changed_near(t)) && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
         });
-        flips += done;
+        flips.flips += done + flipper.after_another_done;  // a pair is two removals
+        flips.after_another += flipper.after_another_done;
         if (done == 0) break;
     }
     return flips;

@@ -11,7 +11,9 @@
 // and no new edge breaks the size bound.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <vector>
 
 #include "refine/refine_context.hpp"
 
@@ -31,8 +33,21 @@ std::size_t improve_by_flips(RefineContext& c, double threshold);
 // flip raises the smallest angle among the tetrahedra it replaces, so
 // the mesh's smallest angle never falls; and it makes no tetrahedron whose
 // radius ratio is below both `keep_radius_ratio` and the worst of those
-// it replaces (the angle and the radius ratio can move apart).
-std::size_t improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                       int max_sweeps);
+// it replaces (the angle and the radius ratio can move apart). With
+// options.edge_removal_after_another, an edge removal that no
+// triangulation of the edge's ring allows may follow the removal of an
+// edge from one of its ends to a ring vertex (the pair judged as one flip:
+// what it leaves against all it replaced).
+struct DihedralFlips {
+    std::size_t flips = 0;          // flips done, each removal of a pair counted
+    std::size_t after_another = 0;  // of them, pairs of edge removals
+};
+// For tests: the corners of the tetrahedra one flip (or pair) replaced
+// and of those it made.
+struct FlipRecord {
+    std::vector<std::array<mesh::VertexId, 4>> replaced, made;
+};
+DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
+                                         int max_sweeps, std::vector<FlipRecord>* log = nullptr);
 
 }  // namespace cbr::refine

@@ -65,8 +65,12 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         stats.sliver_points += slivers;
         if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
-    if (options.flips && options.dihedral_flips)
-        stats.flips += improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold, kDihedralFlipSweeps);
+    if (options.flips && options.dihedral_flips) {
+        const DihedralFlips done =
+            improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold, kDihedralFlipSweeps);
+        stats.flips += done.flips;
+        stats.removal_pairs += done.after_another;
+    }
     if (options.slivers) {
         const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold, stats);
         stats.field_points += rescued;

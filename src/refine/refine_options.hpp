@@ -41,6 +41,7 @@ struct RefineOptions {
     bool steiner_relocation = true;   // steiner_relocation.hpp
     bool dihedral_flips = true;       // after the passes (quality_flips.hpp)
     bool sliver_face_bound = true;    // sliver removal's skip by a face's bound (same mesh either way)
+    bool edge_removal_after_another = true;  // dihedral flips: an edge removal made possible by another first
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -62,6 +63,9 @@ struct RefineStats {
     bool point_cap_hit = false;
     std::size_t cavity_tets = 0;        // tetrahedra removed by the insertions, in all (cost measure)
     std::size_t flips = 0;              // quality flips done (2-3 and edge removals)
+    // Of the flips: pairs of edge removals, the first making the second
+    // possible (two flips each).
+    std::size_t removal_pairs = 0;
     std::size_t smoothed = 0;           // vertex moves accepted
     std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
     std::size_t sliver_cavities_skipped = 0;  // cavities sliver removal did not rate (a face's bound)
