@@ -42,6 +42,7 @@ struct RefineOptions {
     bool dihedral_flips = true;       // after the passes (quality_flips.hpp)
     bool sliver_face_bound = true;    // sliver removal's skip by a face's bound (same mesh either way)
     bool edge_removal_after_another = true;  // dihedral flips: an edge removal made possible by another first
+    bool dihedral_smoothing = true;   // after the dihedral flips (smoothing.hpp), then those flips again
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -67,6 +68,7 @@ struct RefineStats {
     // possible (two flips each).
     std::size_t removal_pairs = 0;
     std::size_t smoothed = 0;           // vertex moves accepted
+    std::size_t dihedral_moves = 0;     // of them, moves for the smallest dihedral angle (smooth_for_dihedrals)
     std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
     std::size_t sliver_cavities_skipped = 0;  // cavities sliver removal did not rate (a face's bound)
     std::size_t steiner_suppressed = 0; // Steiner points suppressed after refinement (steiner_removal.hpp)

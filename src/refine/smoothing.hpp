@@ -12,13 +12,30 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "refine/refine_context.hpp"
+#include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
 
 // One sweep over the movable vertices whose ball changed since the previous
 // pass (RefineContext::changed); returns the number of moves kept.
 std::size_t smooth_vertices(RefineContext& c);
+
+// After the optimisation passes, for Table II's minimum dihedral angle:
+// each movable vertex whose ball has a tetrahedron with a dihedral angle
+// below `below_degrees` moves to where the ball's smallest dihedral angle
+// is larger, as long as the ball keeps its radius ratios (no more
+// tetrahedra under `keep_radius_ratio`, the worst at least the smaller of
+// that and the old worst, 90% of the mean); the same validity and size
+// rules as above. Returns the number of moves; `log`, for tests, gets
+// each move in order.
+struct VertexMove {
+    mesh::VertexId v;
+    Point from, to;
+};
+std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double keep_radius_ratio,
+                                 std::vector<VertexMove>* log = nullptr);
 
 }  // namespace cbr::refine
