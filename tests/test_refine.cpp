@@ -46,6 +46,7 @@
 #include "refine/quality_stats.hpp"
 #include "refine/refine.hpp"
 #include "refine/refine_context.hpp"
+#include "refine/sliver_removal.hpp"
 #include "refine/smoothing.hpp"
 #include "refine/tet_measures.hpp"
 #include "recovery_checks.hpp"
@@ -706,7 +707,11 @@ TEST_CASE("refine: points moved for the smallest dihedral angle lift it where fl
     // 3.78 (TetGen -pYq1.414: 3.75). The chain link: a flat tetrahedron of
     // four input points that the flips remove once points around it moved
     // (1.5e-4 -> 0.024 deg; TetGen 0.003).
-    cbr::refine::RefineOptions without;
+    // The points for small angles (which reach the chain link's minimum
+    // too) are left out of both runs.
+    cbr::refine::RefineOptions with;
+    with.angle_rescue = false;
+    cbr::refine::RefineOptions without = with;
     without.dihedral_smoothing = false;
     const auto bad = [](const Outcome& out) {
         return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
@@ -718,7 +723,7 @@ TEST_CASE("refine: points moved for the smallest dihedral angle lift it where fl
             if (!shared_surface(name, surface)) return;
             const Surface s{surface.xyz, surface.tris};
             const Outcome off = refine_and_check(s, without, 0.2, false, false);
-            const Outcome on = refine_and_check(s, cbr::refine::RefineOptions{}, 0.2, false, false);
+            const Outcome on = refine_and_check(s, with, 0.2, false, false);
             MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> "
                                                << on.quality.dihedral_min_deg << ", moves "
                                                << on.stats.dihedral_moves);
@@ -729,6 +734,80 @@ TEST_CASE("refine: points moved for the smallest dihedral angle lift it where fl
             CHECK(bad(on) <= bad(off));
         }
     }
+}
+
+TEST_CASE("refine: a point for a small angle beats its cavity's angle and keeps its radius ratios") {
+    // rescue_small_angles' points, from its log: each star's smallest
+    // dihedral angle beats its cavity's by the relative gain 1e-3, and no
+    // tetrahedron of it falls under both q = 0.1 and the cavity's worst
+    // q. On the chain link refined without these points.
+    const auto check_points = [](const Surface& s) {
+        Recovered r;
+        recover_surface(s, r);
+        cbr::mesh::TetMesh& m = r.d.mesh_for_update();
+        const cbr::recover::ConstraintFaces faces(r.tris, {});
+        cbr::refine::RefineOptions without;
+        without.angle_rescue = false;
+        cbr::refine::refine_mesh(m, faces, r.region, r.steiner, without);
+        std::vector<VertexId> added;
+        for (VertexId v = static_cast<VertexId>(s.xyz.size() / 3); v < m.vertex_count(); ++v) added.push_back(v);
+        cbr::refine::RefineContext c(m, faces, cbr::recover::classify_regions(m, faces).of_tet, added,
+                                     cbr::refine::RefineOptions{});
+        cbr::refine::RefineStats stats;
+        std::vector<cbr::refine::AngleRescue> log;
+        // Below 5 deg rather than refinement's 1: more tetrahedra tried,
+        // some whose best star does not beat them.
+        const std::size_t inserted = cbr::refine::rescue_small_angles(c, 5.0, 0.1, stats, &log);
+        REQUIRE(cbr::mesh::check_mesh(m).ok());
+        CHECK(inserted == log.size());
+        CHECK(inserted > 0);
+        using Corners = std::array<VertexId, 4>;
+        const auto worst = [&](const std::vector<Corners>& tets, auto measure) {
+            double w = std::numeric_limits<double>::infinity();
+            for (const Corners& k : tets)
+                w = std::min(w, measure(m.point(k[0]), m.point(k[1]), m.point(k[2]), m.point(k[3])));
+            return w;
+        };
+        const auto angle = [](const double* a, const double* b, const double* d, const double* e) {
+            return cbr::refine::min_dihedral(a, b, d, e);
+        };
+        const auto ratio = [](const double* a, const double* b, const double* d, const double* e) {
+            return cbr::refine::radius_ratio(a, b, d, e);
+        };
+        std::size_t broken = 0;
+        for (const cbr::refine::AngleRescue& p : log) {
+            REQUIRE(!p.replaced.empty());
+            REQUIRE(!p.made.empty());
+            broken += !(worst(p.made, angle) > worst(p.replaced, angle) * (1 + 1e-3) &&
+                        worst(p.made, ratio) >= std::min(0.1, worst(p.replaced, ratio)));
+        }
+        MESSAGE("points " << inserted << ", breaking a rule " << broken);
+        CHECK(broken == 0);
+    };
+    cbr::test::OffSurface surface;
+    if (!shared_surface("thingiverse-chain-link", surface)) return;
+    check_points(Surface{surface.xyz, surface.tris});
+}
+
+TEST_CASE("refine: a point for a small angle lifts the golf ball's minimum above TetGen's") {
+    // thingiverse-golf-ball keeps a flat tetrahedron of four input points
+    // in a nearly flat patch of its surface (0.17 deg) that the radius
+    // ratio cannot tell from its neighbours; judged by the angle, 0.49
+    // (TetGen -pYq1.414: 0.31). It adds a few tetrahedra under q = 0.1
+    // (44 -> 54 measured).
+    cbr::test::OffSurface surface;
+    if (!shared_surface("thingiverse-golf-ball", surface)) return;
+    const Surface s{surface.xyz, surface.tris};
+    cbr::refine::RefineOptions without;
+    without.angle_rescue = false;
+    const Outcome off = refine_and_check(s, without, 0.75, false);
+    const Outcome on = refine_and_check(s, cbr::refine::RefineOptions{}, 0.75, false);
+    MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg
+                                       << ", points " << on.stats.angle_points);
+    CHECK(off.stats.angle_points == 0);
+    CHECK(on.stats.angle_points > 0);
+    CHECK(off.quality.dihedral_min_deg < 0.31);
+    CHECK(on.quality.dihedral_min_deg > 0.31);
 }
 
 TEST_CASE("refine: the deepest point of an intersection of half-spaces") {

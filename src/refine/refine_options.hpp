@@ -43,6 +43,7 @@ struct RefineOptions {
     bool sliver_face_bound = true;    // sliver removal's skip by a face's bound (same mesh either way)
     bool edge_removal_after_another = true;  // dihedral flips: an edge removal made possible by another first
     bool dihedral_smoothing = true;   // after the dihedral flips (smoothing.hpp), then those flips again
+    bool angle_rescue = true;         // last: rescue_small_angles (sliver_removal.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -70,6 +71,7 @@ struct RefineStats {
     std::size_t smoothed = 0;           // vertex moves accepted
     std::size_t dihedral_moves = 0;     // of them, moves for the smallest dihedral angle (smooth_for_dihedrals)
     std::size_t sliver_points = 0;      // of the field points: inserted by sliver removal
+    std::size_t angle_points = 0;       // of those: for the smallest dihedral angle (rescue_small_angles)
     std::size_t sliver_cavities_skipped = 0;  // cavities sliver removal did not rate (a face's bound)
     std::size_t steiner_suppressed = 0; // Steiner points suppressed after refinement (steiner_removal.hpp)
     std::size_t steiner_relocated = 0;  // Steiner points moved with their neighbourhood (steiner_relocation.hpp)

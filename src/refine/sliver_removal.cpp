@@ -46,6 +46,9 @@ constexpr double kClimbFrom = 0.1;
 constexpr double kRescueBelow = 1e-6;
 constexpr double kRescueGain = 100.0;
 constexpr double kRescueFloor = 1e-4;
+// rescue_small_angles: a shell's star judged by the smallest dihedral
+// angle must beat the shell's by this factor.
+constexpr double kAngleGain = 1.0 + 1e-3;
 
 struct BoundaryFace {
     std::array<const double*, 3> corners;  // p is on the cavity's side when orient3d(corners, p) > 0
@@ -55,9 +58,14 @@ struct BoundaryFace {
 
 class SliverRemover {
 public:
-    SliverRemover(RefineContext& c, double threshold) : c_(c), m_(c.m), threshold_(threshold) {}
+    // What stars and cavities are judged by: the radius ratio (remove,
+    // rescue), or the smallest dihedral angle (rescue_angle).
+    using Measure = double (*)(const double*, const double*, const double*, const double*);
+    SliverRemover(RefineContext& c, double threshold, Measure judged_by = radius_ratio)
+        : c_(c), m_(c.m), threshold_(threshold), measure_(judged_by) {}
     bool remove(TetId sliver);
     bool rescue(TetId sliver);
+    bool rescue_angle(TetId sliver, std::vector<AngleRescue>* log);
     // Cavities not rated: a boundary face caps every star (no_star_beats).
     std::size_t skipped() const { return skipped_; }
 
@@ -78,6 +86,12 @@ private:
     };
     bool insert(TetId sliver, Choice& best);
     bool keeps_smallest_angle(const Choice& best);
+    bool keeps_radius_ratio(const Choice& best);
+    bool by_radius_ratio() const { return measure_ == static_cast<Measure>(radius_ratio); }
+    double measure(TetId t) const {
+        const VertexId* v = m_.vertices(t);
+        return measure_(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
+    }
     void rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search, Choice& best,
                      const Point* kernel_from = nullptr);
     void rate_shells(TetId sliver, const ShellRating& rating, Choice& best);
@@ -104,6 +118,7 @@ private:
     RefineContext& c_;
     mesh::TetMesh& m_;
     const double threshold_;  // radius ratio below which a tetrahedron is a sliver
+    const Measure measure_;
     std::vector<TetId> cavity_;
     static constexpr std::uint8_t kInCavity = 1u << 0;
     mesh::SlotMarks marks_;  // kInCavity: the slots of cavity_
@@ -112,6 +127,7 @@ private:
     std::vector<Point> candidates_;
     mesh::Shell shell_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
+    std::vector<TetId> star_;              // of the last insertion
     std::size_t skipped_ = 0;
 };
 
@@ -181,7 +197,7 @@ double SliverRemover::star_quality(const double* p, double floor) const {
         }
     double worst = 1;
     for (const BoundaryFace& f : boundary_) {
-        worst = std::min(worst, radius_ratio(f.corners[0], f.corners[1], f.corners[2], p));
+        worst = std::min(worst, measure_(f.corners[0], f.corners[1], f.corners[2], p));
         if (worst <= floor) return worst;
     }
     return worst;
@@ -238,7 +254,7 @@ TetId SliverRemover::containing(const double* p) const {
 void SliverRemover::rate_cavity(TetId sliver, double old_min, double floor, double gain, Search search,
                                 Choice& best, const Point* kernel_from) {
     const double bar = std::max(gain * old_min, floor);
-    if (c_.options.sliver_face_bound && no_star_beats(std::max(bar, best.quality))) {
+    if (c_.options.sliver_face_bound && by_radius_ratio() && no_star_beats(std::max(bar, best.quality))) {
         ++skipped_;
         return;
     }
@@ -321,10 +337,10 @@ void SliverRemover::rate_shells(TetId sliver, const ShellRating& rating, Choice&
         if (!inside) continue;
         marks_.new_round(m_.slot_count());
         cavity_.clear();
-        double old_min = 1;
+        double old_min = by_radius_ratio() ? 1 : 180;
         for (TetId t : shell_.tets) {
             add_to_cavity(t);
-            old_min = std::min(old_min, radius_ratio(m_, t));
+            old_min = std::min(old_min, measure(t));
         }
         // The middle of ab sees every face of its shell.
         const double* pa = m_.point(a);
@@ -433,6 +449,55 @@ bool SliverRemover::rescue(TetId sliver) {
     return insert(sliver, best);
 }
 
+// Table II's minimum dihedral angle on the shared surfaces that keep a
+// flat tetrahedron of four input points (thingiverse-golf-ball: 0.17 deg
+// in a nearly flat patch of the surface; TetGen -pYq1.414: 0.31): no star
+// beats such a shell's worst radius ratio by enough for rescue, since
+// the patch's triangles cap it, but judged by the smallest dihedral angle
+// the shells' best star (the deepest point of their kernel a candidate
+// too, then climbed) often is far better (golf ball: 0.49 deg). Taken
+// when it beats the shell's smallest angle by kAngleGain and keeps its
+// radius ratios (keeps_radius_ratio).
+bool SliverRemover::rescue_angle(TetId sliver, std::vector<AngleRescue>* log) {
+    if (has_movable_vertex(sliver)) return false;
+    Choice best;
+    rate_shells(sliver, {0, kAngleGain, true}, best);
+    AngleRescue rescued;
+    const auto corners = [&](TetId t) {
+        const VertexId* v = m_.vertices(t);
+        return std::array<VertexId, 4>{v[0], v[1], v[2], v[3]};
+    };
+    if (log)
+        for (TetId t : best.cavity) rescued.replaced.push_back(corners(t));
+    if (!insert(sliver, best)) return false;
+    if (log) {
+        for (TetId t : star_) rescued.made.push_back(corners(t));
+        log->push_back(std::move(rescued));
+    }
+    return true;
+}
+
+// Whether best's star, judged by the smallest dihedral angle, keeps the
+// radius ratios of its cavity: none under the smaller of the threshold
+// and the cavity's worst (leaves cavity_ and boundary_ those of best's
+// cavity). The count under the threshold may grow: the flat faces of the
+// patch cap every tetrahedron on them (golf ball: 9 points, 44 -> 54
+// tetrahedra under q = 0.1).
+bool SliverRemover::keeps_radius_ratio(const Choice& best) {
+    double before = 1;
+    marks_.new_round(m_.slot_count());
+    cavity_.clear();
+    for (TetId t : best.cavity) {
+        add_to_cavity(t);
+        before = std::min(before, radius_ratio(m_, t));
+    }
+    collect_boundary();
+    const double floor = std::min(threshold_, before);
+    return std::all_of(boundary_.begin(), boundary_.end(), [&](const BoundaryFace& f) {
+        return radius_ratio(f.corners[0], f.corners[1], f.corners[2], best.point.data()) >= floor;
+    });
+}
+
 // Whether best's star keeps the smallest dihedral angle of its cavity
 // (leaves cavity_ and boundary_ those of best's cavity). The radius ratio
 // can rise while the smallest angle falls: a star that still keeps a
@@ -466,7 +531,8 @@ bool SliverRemover::insert(TetId sliver, Choice& best) {
     const std::int32_t region = c_.region(sliver);
     // The smallest cavity with a valid star (the least change), or none.
     if (best.quality == 0) return false;
-    if (best.quality < threshold_ && !keeps_smallest_angle(best)) return false;
+    if (by_radius_ratio() ? best.quality < threshold_ && !keeps_smallest_angle(best) : !keeps_radius_ratio(best))
+        return false;
     cavity_.swap(best.cavity);
     const TetId start = containing(best.point.data());
     if (start == mesh::kNoTet) return false;
@@ -492,6 +558,7 @@ bool SliverRemover::insert(TetId sliver, Choice& best) {
     }
     c_.add_vertex(h);
     for (TetId t : r.created) c_.set_region(t, region);
+    star_ = r.created;
     return true;
 }
 
@@ -503,6 +570,22 @@ std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stat
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
         if (c.in_domain(t) && c.changed_near(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
+    }
+    stats.sliver_cavities_skipped += remover.skipped();
+    return inserted;
+}
+
+std::size_t rescue_small_angles(RefineContext& c, double below_degrees, double threshold, RefineStats& stats,
+                                std::vector<AngleRescue>* log) {
+    SliverRemover remover(c, threshold, min_dihedral);
+    const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
+    std::size_t inserted = 0;
+    const std::size_t slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t) {
+        if (!c.in_domain(t) || radius_ratio(c.m, t) >= q_bound) continue;
+        const VertexId* v = c.m.vertices(t);
+        if (min_dihedral(c.m.point(v[0]), c.m.point(v[1]), c.m.point(v[2]), c.m.point(v[3])) < below_degrees)
+            inserted += remover.rescue_angle(t, log);
     }
     stats.sliver_cavities_skipped += remover.skipped();
     return inserted;

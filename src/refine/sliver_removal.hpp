@@ -34,7 +34,9 @@
 // angle (the radius ratio can rise while it falls).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <vector>
 
 #include "refine/refine_context.hpp"
 
@@ -59,5 +61,18 @@ std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stat
 // revisits them. Returns the number of points inserted (skipped cavities
 // counted as by remove_slivers).
 std::size_t rescue_flat_slivers(RefineContext& c, double threshold, RefineStats& stats);
+
+// After rescue_flat_slivers, for Table II's minimum dihedral angle: a
+// tetrahedron of four input points with a dihedral angle below
+// `below_degrees` gets the best point of the shells of its widest edges
+// judged by the smallest dihedral angle, if its star beats the shell's
+// smallest angle and makes no tetrahedron under both `threshold` and the
+// shell's worst radius ratio. Returns the number of points inserted;
+// `log`, for tests, gets each one's replaced tetrahedra and star.
+struct AngleRescue {
+    std::vector<std::array<mesh::VertexId, 4>> replaced, made;
+};
+std::size_t rescue_small_angles(RefineContext& c, double below_degrees, double threshold, RefineStats& stats,
+                                std::vector<AngleRescue>* log = nullptr);
 
 }  // namespace cbr::refine

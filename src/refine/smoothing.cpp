@@ -313,11 +313,11 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
         double next_angle = angle;
         for (std::size_t axis = 0; axis < 3; ++axis)
             for (double sign : {-1.0, 1.0}) {
-                Point c = p;
-                c[axis] += sign * step;
-                m_.set_point(v, c.data());
+                Point trial = p;
+                trial[axis] += sign * step;
+                m_.set_point(v, trial.data());
                 const BallAngles r = rate_angles(keep_radius_ratio);
-                if (acceptable(r, next_angle)) next = c, next_angle = r.smallest;
+                if (acceptable(r, next_angle)) next = trial, next_angle = r.smallest;
             }
         if (next_angle > angle) {
             p = next;
