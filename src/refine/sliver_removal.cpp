@@ -481,7 +481,7 @@ bool SliverRemover::rescue_angle(TetId sliver, std::vector<AngleRescue>* log) {
 // radius ratios of its cavity: none under the smaller of the threshold
 // and the cavity's worst (leaves cavity_ and boundary_ those of best's
 // cavity). The count under the threshold may grow: the flat faces of the
-// patch cap every tetrahedron on them (golf ball: 9 points, 44 -> 54
+// patch cap every tetrahedron on them (golf ball: 2 points, 44 -> 54
 // tetrahedra under q = 0.1).
 bool SliverRemover::keeps_radius_ratio(const Choice& best) {
     double before = 1;
