@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -388,6 +389,37 @@ Surface fan_cap_prism(int n, double radius, double height) {
     return s;
 }
 
+// A surface refined with `options` (one step switched off), and a fresh
+// context on the result in which every point after the input points may
+// move: for running that step alone and checking each change it logs.
+struct RefinedAlone {
+    Recovered r;
+    std::unique_ptr<cbr::recover::ConstraintFaces> faces;
+    std::unique_ptr<cbr::refine::RefineContext> c;
+};
+void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& options, RefinedAlone& out) {
+    recover_surface(s, out.r);
+    cbr::mesh::TetMesh& m = out.r.d.mesh_for_update();
+    out.faces = std::make_unique<cbr::recover::ConstraintFaces>(out.r.tris, std::vector<std::int32_t>{});
+    cbr::refine::refine_mesh(m, *out.faces, out.r.region, out.r.steiner, options);
+    std::vector<VertexId> added;
+    for (VertexId v = static_cast<VertexId>(s.xyz.size() / 3); v < m.vertex_count(); ++v) added.push_back(v);
+    out.c = std::make_unique<cbr::refine::RefineContext>(m, *out.faces,
+                                                         cbr::recover::classify_regions(m, *out.faces).of_tet,
+                                                         added, cbr::refine::RefineOptions{});
+}
+
+using Corners = std::array<VertexId, 4>;
+using Measure = double (*)(const double*, const double*, const double*, const double*);
+// The smallest `measure` over tetrahedra given by their corners.
+double worst_of(const cbr::mesh::TetMesh& m, const std::vector<Corners>& tets, Measure measure) {
+    double w = std::numeric_limits<double>::infinity();
+    for (const Corners& k : tets) w = std::min(w, measure(m.point(k[0]), m.point(k[1]), m.point(k[2]), m.point(k[3])));
+    return w;
+}
+const Measure kAngle = cbr::refine::min_dihedral;
+const Measure kRatio = cbr::refine::radius_ratio;
+
 TEST_CASE("refine: a dihedral angle below a bound caps the radius ratio") {
     // improve_dihedrals_by_flips skips a tetrahedron by its radius ratio
     // when that is at least radius_ratio_bound_for_dihedral(angle): the
@@ -578,30 +610,14 @@ TEST_CASE("refine: what each dihedral flip makes beats what it replaced") {
     // tetrahedra of four input points in nearly flat layers; there the
     // tetrahedra that the first removal of a pair leaves decide some).
     const auto check_sweeps = [](const Surface& s) {
-        Recovered r;
-        recover_surface(s, r);
-        cbr::mesh::TetMesh& m = r.d.mesh_for_update();
-        const cbr::recover::ConstraintFaces faces(r.tris, {});
         cbr::refine::RefineOptions without;
         without.dihedral_flips = false;
-        cbr::refine::refine_mesh(m, faces, r.region, r.steiner, without);
-        cbr::refine::RefineContext c(m, faces, cbr::recover::classify_regions(m, faces).of_tet, r.steiner,
-                                     cbr::refine::RefineOptions{});
-        using Corners = std::array<VertexId, 4>;
-        const auto worst = [&](const std::vector<Corners>& tets, auto measure) {
-            double w = std::numeric_limits<double>::infinity();
-            for (const Corners& k : tets)
-                w = std::min(w, measure(m.point(k[0]), m.point(k[1]), m.point(k[2]), m.point(k[3])));
-            return w;
-        };
-        const auto angle = [](const double* a, const double* b, const double* d, const double* e) {
-            return cbr::refine::min_dihedral(a, b, d, e);
-        };
-        const auto ratio = [](const double* a, const double* b, const double* d, const double* e) {
-            return cbr::refine::radius_ratio(a, b, d, e);
-        };
+        RefinedAlone refined;
+        refine_then_context(s, without, refined);
+        const cbr::mesh::TetMesh& m = refined.r.d.mesh();
         std::vector<cbr::refine::FlipRecord> log;
-        const cbr::refine::DihedralFlips done = cbr::refine::improve_dihedrals_by_flips(c, 5.0, 0.1, 8, &log);
+        const cbr::refine::DihedralFlips done =
+            cbr::refine::improve_dihedrals_by_flips(*refined.c, 5.0, 0.1, 8, &log);
         REQUIRE(cbr::mesh::check_mesh(m).ok());
         std::size_t pairs = 0, worse = 0, below_floor = 0;
         for (const cbr::refine::FlipRecord& f : log) {
@@ -613,8 +629,8 @@ TEST_CASE("refine: what each dihedral flip makes beats what it replaced") {
             for (Corners& k : sorted) std::sort(k.begin(), k.end());
             std::sort(sorted.begin(), sorted.end());
             pairs += std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
-            worse += !(worst(f.made, angle) > worst(f.replaced, angle) * (1 + 1e-3));
-            below_floor += worst(f.made, ratio) < std::min(0.1, worst(f.replaced, ratio));
+            worse += !(worst_of(m, f.made, kAngle) > worst_of(m, f.replaced, kAngle) * (1 + 1e-3));
+            below_floor += worst_of(m, f.made, kRatio) < std::min(0.1, worst_of(m, f.replaced, kRatio));
         }
         MESSAGE("flips " << done.flips << " (pairs " << done.after_another << ")");
         CHECK(done.after_another > 0);
@@ -639,19 +655,14 @@ TEST_CASE("refine: a point moved for the smallest dihedral angle keeps its ball'
     // min(0.1, old worst) and 90% of its mean q. Checked on meshes
     // refined without these moves: the 48-gon coin and the chain link.
     const auto check_moves = [](const Surface& s) {
-        Recovered r;
-        recover_surface(s, r);
-        cbr::mesh::TetMesh& m = r.d.mesh_for_update();
-        const cbr::recover::ConstraintFaces faces(r.tris, {});
         cbr::refine::RefineOptions without;
         without.dihedral_smoothing = false;
-        cbr::refine::refine_mesh(m, faces, r.region, r.steiner, without);
-        std::vector<VertexId> added;  // what refinement may move: every point after the input points
-        for (VertexId v = static_cast<VertexId>(s.xyz.size() / 3); v < m.vertex_count(); ++v) added.push_back(v);
-        cbr::refine::RefineContext c(m, faces, cbr::recover::classify_regions(m, faces).of_tet, added,
-                                     cbr::refine::RefineOptions{});
+        RefinedAlone refined;
+        refine_then_context(s, without, refined);
+        cbr::mesh::TetMesh& m = refined.r.d.mesh_for_update();
+        const cbr::refine::RefineContext& c = *refined.c;
         std::vector<cbr::refine::VertexMove> log;
-        const std::size_t moved = cbr::refine::smooth_for_dihedrals(c, 5.0, 0.1, &log);
+        const std::size_t moved = cbr::refine::smooth_for_dihedrals(*refined.c, 5.0, 0.1, &log);
         REQUIRE(cbr::mesh::check_mesh(m).ok());
         CHECK(moved == log.size());
         CHECK(moved > 0);
@@ -742,44 +753,25 @@ TEST_CASE("refine: a point for a small angle beats its cavity's angle and keeps 
     // tetrahedron of it falls under both q = 0.1 and the cavity's worst
     // q. On the chain link refined without these points.
     const auto check_points = [](const Surface& s) {
-        Recovered r;
-        recover_surface(s, r);
-        cbr::mesh::TetMesh& m = r.d.mesh_for_update();
-        const cbr::recover::ConstraintFaces faces(r.tris, {});
         cbr::refine::RefineOptions without;
         without.angle_rescue = false;
-        cbr::refine::refine_mesh(m, faces, r.region, r.steiner, without);
-        std::vector<VertexId> added;
-        for (VertexId v = static_cast<VertexId>(s.xyz.size() / 3); v < m.vertex_count(); ++v) added.push_back(v);
-        cbr::refine::RefineContext c(m, faces, cbr::recover::classify_regions(m, faces).of_tet, added,
-                                     cbr::refine::RefineOptions{});
+        RefinedAlone refined;
+        refine_then_context(s, without, refined);
+        const cbr::mesh::TetMesh& m = refined.r.d.mesh();
         cbr::refine::RefineStats stats;
         std::vector<cbr::refine::AngleRescue> log;
         // Below 5 deg rather than refinement's 1: more tetrahedra tried,
         // some whose best star does not beat them.
-        const std::size_t inserted = cbr::refine::rescue_small_angles(c, 5.0, 0.1, stats, &log);
+        const std::size_t inserted = cbr::refine::rescue_small_angles(*refined.c, 5.0, 0.1, stats, &log);
         REQUIRE(cbr::mesh::check_mesh(m).ok());
         CHECK(inserted == log.size());
         CHECK(inserted > 0);
-        using Corners = std::array<VertexId, 4>;
-        const auto worst = [&](const std::vector<Corners>& tets, auto measure) {
-            double w = std::numeric_limits<double>::infinity();
-            for (const Corners& k : tets)
-                w = std::min(w, measure(m.point(k[0]), m.point(k[1]), m.point(k[2]), m.point(k[3])));
-            return w;
-        };
-        const auto angle = [](const double* a, const double* b, const double* d, const double* e) {
-            return cbr::refine::min_dihedral(a, b, d, e);
-        };
-        const auto ratio = [](const double* a, const double* b, const double* d, const double* e) {
-            return cbr::refine::radius_ratio(a, b, d, e);
-        };
         std::size_t broken = 0;
         for (const cbr::refine::AngleRescue& p : log) {
             REQUIRE(!p.replaced.empty());
             REQUIRE(!p.made.empty());
-            broken += !(worst(p.made, angle) > worst(p.replaced, angle) * (1 + 1e-3) &&
-                        worst(p.made, ratio) >= std::min(0.1, worst(p.replaced, ratio)));
+            broken += !(worst_of(m, p.made, kAngle) > worst_of(m, p.replaced, kAngle) * (1 + 1e-3) &&
+                        worst_of(m, p.made, kRatio) >= std::min(0.1, worst_of(m, p.replaced, kRatio)));
         }
         MESSAGE("points " << inserted << ", breaking a rule " << broken);
         CHECK(broken == 0);
