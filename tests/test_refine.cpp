@@ -409,7 +409,7 @@ void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& opt
                                                          added, cbr::refine::RefineOptions{});
 }
 
-using Corners = std::array<VertexId, 4>;
+using cbr::refine::Corners;
 using Measure = double (*)(const double*, const double*, const double*, const double*);
 // The smallest `measure` over tetrahedra given by their corners.
 double worst_of(const cbr::mesh::TetMesh& m, const std::vector<Corners>& tets, Measure measure) {
@@ -526,6 +526,25 @@ TEST_CASE("refine: sliver removal's face bound skips cavities, not results") {
     }
 }
 
+// Tetrahedra under q = 0.1 (Table II's percentage, back to a count).
+long long bad_tets(const Outcome& out) {
+    return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
+}
+
+// Shared surface `name` refined with the step a test is about switched off
+// (`off_options`) and on (`on_options`), each checked by refine_and_check
+// (size bound not required); false when ../shared is missing.
+bool refine_shared_off_on(const char* name, const cbr::refine::RefineOptions& off_options,
+                          const cbr::refine::RefineOptions& on_options, double min_average, bool steiner_clean,
+                          Outcome& off, Outcome& on) {
+    cbr::test::OffSurface surface;
+    if (!shared_surface(name, surface)) return false;
+    const Surface s{surface.xyz, surface.tris};
+    off = refine_and_check(s, off_options, min_average, false, steiner_clean);
+    on = refine_and_check(s, on_options, min_average, false, steiner_clean);
+    return true;
+}
+
 TEST_CASE("refine: flips for the smallest dihedral angle raise it") {
     // Coins whose caps are fanned from one rim vertex keep tetrahedra of
     // four input points on the thin cap triangles, whose smallest dihedral
@@ -534,27 +553,21 @@ TEST_CASE("refine: flips for the smallest dihedral angle raise it") {
     // refine_and_check hold either way.
     cbr::refine::RefineOptions without;
     without.dihedral_flips = false;
-    const auto bad = [](const Outcome& out) {
-        return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
-    };
     SUBCASE("a 48-gon coin 60 across and 1 thick") {
         const Surface coin = fan_cap_prism(48, 30, 1);
         const Outcome off = refine_and_check(coin, without, 0.05, false, false);
         const Outcome on = refine_and_check(coin, cbr::refine::RefineOptions{}, 0.05, false, false);
         MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
         CHECK(on.quality.dihedral_min_deg > 4 * off.quality.dihedral_min_deg);
-        CHECK(bad(on) <= bad(off));
+        CHECK(bad_tets(on) <= bad_tets(off));
     }
     SUBCASE("thingicsg-cylinder (200-gon, the same shape)") {
         // TetGen -pYq1.414: 0.35 deg; without these flips 0.21 deg.
-        cbr::test::OffSurface surface;
-        if (!shared_surface("thingicsg-cylinder", surface)) return;
-        const Surface coin{surface.xyz, surface.tris};
-        const Outcome off = refine_and_check(coin, without, 0.005, false);
-        const Outcome on = refine_and_check(coin, cbr::refine::RefineOptions{}, 0.005, false);
+        Outcome off, on;
+        if (!refine_shared_off_on("thingicsg-cylinder", without, {}, 0.005, true, off, on)) return;
         MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
         CHECK(on.quality.dihedral_min_deg > 0.5);
-        CHECK(bad(on) <= bad(off));
+        CHECK(bad_tets(on) <= bad_tets(off));
     }
 }
 
@@ -569,33 +582,28 @@ TEST_CASE("refine: an edge removal after another where no ring triangulation was
     // is undone must leave the mesh exactly as it was).
     cbr::refine::RefineOptions without;
     without.edge_removal_after_another = false;
-    const auto bad = [](const Outcome& out) {
-        return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
-    };
     SUBCASE("a 48-gon coin 60 across and 1 thick") {
         // Measured: 81 pairs, tetrahedra under q = 0.1 352 -> 323 (of 450 -> 427).
         const Surface coin = fan_cap_prism(48, 30, 1);
         const Outcome off = refine_and_check(coin, without, 0.05, false, false);
         const Outcome on = refine_and_check(coin, cbr::refine::RefineOptions{}, 0.05, false, false);
-        MESSAGE("pairs " << on.stats.removal_pairs << ", under q = 0.1 " << bad(off) << " -> " << bad(on));
+        MESSAGE("pairs " << on.stats.removal_pairs << ", under q = 0.1 " << bad_tets(off) << " -> "
+                         << bad_tets(on));
         CHECK(off.stats.removal_pairs == 0);
         CHECK(on.stats.removal_pairs > 0);
         CHECK(on.quality.dihedral_min_deg >= off.quality.dihedral_min_deg);
-        CHECK(bad(on) < bad(off));
+        CHECK(bad_tets(on) < bad_tets(off));
     }
     SUBCASE("wildmeshing-supershape") {
         // A flat tetrahedron of four input points (1.0 deg after the
         // deepest-point rescue) that the pairs remove first: 5.16 deg
         // (TetGen -pYq1.414: 0.12).
-        cbr::test::OffSurface surface;
-        if (!shared_surface("wildmeshing-supershape", surface)) return;
-        const Surface s{surface.xyz, surface.tris};
-        const Outcome off = refine_and_check(s, without, 0.6, false);
-        const Outcome on = refine_and_check(s, cbr::refine::RefineOptions{}, 0.6, false);
+        Outcome off, on;
+        if (!refine_shared_off_on("wildmeshing-supershape", without, {}, 0.6, true, off, on)) return;
         MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
         CHECK(on.stats.removal_pairs > 0);
         CHECK(on.quality.dihedral_min_deg > 4);
-        CHECK(bad(on) <= bad(off));
+        CHECK(bad_tets(on) <= bad_tets(off));
     }
 }
 
@@ -615,12 +623,12 @@ TEST_CASE("refine: what each dihedral flip makes beats what it replaced") {
         RefinedAlone refined;
         refine_then_context(s, without, refined);
         const cbr::mesh::TetMesh& m = refined.r.d.mesh();
-        std::vector<cbr::refine::FlipRecord> log;
+        std::vector<cbr::refine::TetChange> log;
         const cbr::refine::DihedralFlips done =
             cbr::refine::improve_dihedrals_by_flips(*refined.c, 5.0, 0.1, 8, &log);
         REQUIRE(cbr::mesh::check_mesh(m).ok());
         std::size_t pairs = 0, worse = 0, below_floor = 0;
-        for (const cbr::refine::FlipRecord& f : log) {
+        for (const cbr::refine::TetChange& f : log) {
             REQUIRE(!f.replaced.empty());
             REQUIRE(!f.made.empty());
             // A pair notes both shells it replaced, which share the
@@ -724,17 +732,11 @@ TEST_CASE("refine: points moved for the smallest dihedral angle lift it where fl
     with.angle_rescue = false;
     cbr::refine::RefineOptions without = with;
     without.dihedral_smoothing = false;
-    const auto bad = [](const Outcome& out) {
-        return std::llround(out.quality.percent_below_0_1 * static_cast<double>(out.quality.tets) / 100);
-    };
     for (const auto& [name, floor] : {std::pair<const char*, double>{"thingicsg-sprocket-small", 3.75},
                                       std::pair<const char*, double>{"thingiverse-chain-link", 0.003}}) {
         SUBCASE(name) {
-            cbr::test::OffSurface surface;
-            if (!shared_surface(name, surface)) return;
-            const Surface s{surface.xyz, surface.tris};
-            const Outcome off = refine_and_check(s, without, 0.2, false, false);
-            const Outcome on = refine_and_check(s, with, 0.2, false, false);
+            Outcome off, on;
+            if (!refine_shared_off_on(name, without, with, 0.2, false, off, on)) return;
             MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> "
                                                << on.quality.dihedral_min_deg << ", moves "
                                                << on.stats.dihedral_moves);
@@ -742,7 +744,7 @@ TEST_CASE("refine: points moved for the smallest dihedral angle lift it where fl
             CHECK(on.stats.dihedral_moves > 0);
             CHECK(off.quality.dihedral_min_deg < floor);
             CHECK(on.quality.dihedral_min_deg > floor);
-            CHECK(bad(on) <= bad(off));
+            CHECK(bad_tets(on) <= bad_tets(off));
         }
     }
 }
@@ -759,7 +761,7 @@ TEST_CASE("refine: a point for a small angle beats its cavity's angle and keeps 
         refine_then_context(s, without, refined);
         const cbr::mesh::TetMesh& m = refined.r.d.mesh();
         cbr::refine::RefineStats stats;
-        std::vector<cbr::refine::AngleRescue> log;
+        std::vector<cbr::refine::TetChange> log;
         // Below 5 deg rather than refinement's 1: more tetrahedra tried,
         // some whose best star does not beat them.
         const std::size_t inserted = cbr::refine::rescue_small_angles(*refined.c, 5.0, 0.1, stats, &log);
@@ -767,7 +769,7 @@ TEST_CASE("refine: a point for a small angle beats its cavity's angle and keeps 
         CHECK(inserted == log.size());
         CHECK(inserted > 0);
         std::size_t broken = 0;
-        for (const cbr::refine::AngleRescue& p : log) {
+        for (const cbr::refine::TetChange& p : log) {
             REQUIRE(!p.replaced.empty());
             REQUIRE(!p.made.empty());
             broken += !(worst_of(m, p.made, kAngle) > worst_of(m, p.replaced, kAngle) * (1 + 1e-3) &&
@@ -787,13 +789,10 @@ TEST_CASE("refine: a point for a small angle lifts the golf ball's minimum above
     // ratio cannot tell from its neighbours; judged by the angle, 0.49
     // (TetGen -pYq1.414: 0.31). It adds a few tetrahedra under q = 0.1
     // (44 -> 54 measured).
-    cbr::test::OffSurface surface;
-    if (!shared_surface("thingiverse-golf-ball", surface)) return;
-    const Surface s{surface.xyz, surface.tris};
     cbr::refine::RefineOptions without;
     without.angle_rescue = false;
-    const Outcome off = refine_and_check(s, without, 0.75, false);
-    const Outcome on = refine_and_check(s, cbr::refine::RefineOptions{}, 0.75, false);
+    Outcome off, on;
+    if (!refine_shared_off_on("thingiverse-golf-ball", without, {}, 0.75, true, off, on)) return;
     MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg
                                        << ", points " << on.stats.angle_points);
     CHECK(off.stats.angle_points == 0);

@@ -44,7 +44,6 @@ constexpr FlipMeasure kMinDihedral{min_dihedral, oriented_min_dihedral};
 
 class Flipper {
 public:
-    using Corners = std::array<VertexId, 4>;
     // `radius_ratio_floor`: a flip may not make a tetrahedron whose radius
     // ratio is below both this and the worst of those it replaces (0: no
     // condition).
@@ -63,7 +62,7 @@ public:
     // For tests (improve_dihedrals_by_flips' log): the corners of the
     // tetrahedra each flip replaced, noted before it changes the mesh, and
     // of those it made.
-    std::vector<FlipRecord>* log = nullptr;
+    std::vector<TetChange>* log = nullptr;
     double q(VertexId a, VertexId b, VertexId d, VertexId e) const {
         return measure_.value(m_.point(a), m_.point(b), m_.point(d), m_.point(e));
     }
@@ -89,16 +88,15 @@ private:
     template <typename Tets>
     void note_replaced(const Tets& tets) {
         if (log)
-            for (TetId t : tets) replacing_.push_back(corners(t));
+            for (TetId t : tets) replacing_.push_back(corners_of(m_, t));
     }
-    Corners corners(TetId t) const { return {m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3)}; }
     // The new tetrahedra join the region; the edges around them have new
     // shells, so an edge removal refused there may now be possible.
     void adopt(const std::vector<TetId>& created, std::int32_t region) {
         if (log) {
-            FlipRecord record;
+            TetChange record;
             record.replaced.swap(replacing_);
-            for (TetId t : created) record.made.push_back(corners(t));
+            for (TetId t : created) record.made.push_back(corners_of(m_, t));
             log->push_back(std::move(record));
         }
         for (TetId t : created) {
@@ -110,13 +108,18 @@ private:
                     if (bool* refused = refused_.find(key(w[i], w[j]))) *refused = false;
         }
     }
+    // The shell of uv (t holds it) into s, when edge removal may try it:
+    // at most kMaxShell tetrahedra, at least 3, no ghost.
+    bool removable_shell(VertexId u, VertexId v, TetId t, mesh::Shell& s) const {
+        return mesh::shell(m_, u, v, t, s, kMaxShell) && s.size() >= 3 && !s.has_ghost();
+    }
     // Whether every tetrahedron of shell s is in the domain's `region`;
     // `worst` then falls to the smallest measure among them.
     bool shell_in_region(const mesh::Shell& s, std::int32_t region, double& worst);
-    bool undo_unless_better(VertexId u, VertexId v, double worst, double worst_radius_ratio,
-                            const std::vector<TetId>& first, std::int32_t region);
+    bool second_removal_beats(VertexId u, VertexId v, double worst, const std::vector<Corners>& replaced,
+                              const std::vector<TetId>& first, std::vector<TetId>& made);
     // Whether the tetrahedra `made` keep radius_ratio_floor_ against the
-    // tetrahedra `replaced` (corner quadruples of m_).
+    // tetrahedra `replaced` (slots or corner quadruples of m_).
     template <typename Replaced, typename Made>
     bool keeps_radius_ratio(const Replaced& replaced, const Made& made) const;
 
@@ -165,18 +168,14 @@ bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
 
 bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     mesh::Shell& s = shell_;
-    if (!mesh::shell(m_, u, v, t, s, kMaxShell) || s.size() < 3 || s.has_ghost()) return false;
     const std::int32_t region = c_.region(t);
     double old_min = std::numeric_limits<double>::infinity();
-    for (TetId x : s.tets) {
-        if (!c_.in_domain(x) || c_.region(x) != region) return false;
-        old_min = std::min(old_min, q(x));
-    }
+    if (!removable_shell(u, v, t, s) || !shell_in_region(s, region, old_min)) return false;
     std::vector<mesh::RingTriangle>& tris = triangles_;
     objective_.floor = old_min * kGain;
     if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr, objective_)) return false;
     if (radius_ratio_floor_ > 0) {
-        std::vector<std::array<VertexId, 4>>& made = made_;
+        std::vector<Corners>& made = made_;
         made.clear();
         for (const mesh::RingTriangle& r : tris) {
             const VertexId a = s.ring[static_cast<std::size_t>(r[0])], b = s.ring[static_cast<std::size_t>(r[1])],
@@ -217,16 +216,13 @@ bool Flipper::shell_in_region(const mesh::Shell& s, std::int32_t region, double&
 // The first removal takes its ring's best triangulation whatever its
 // worst (the second replaces most of it); the pair is kept only when
 // every tetrahedron it leaves beats the worst of all it replaced
-// (undo_unless_better), else the mesh's journal takes both back
+// (second_removal_beats), else the mesh's journal takes both back
 // (refinement never runs inside another journal).
 bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
     mesh::Shell outer;
-    if (!mesh::shell(m_, u, v, t, outer, kMaxShell) || outer.size() < 3 || outer.has_ghost()) return false;
     const std::int32_t region = c_.region(t);
     double outer_worst = std::numeric_limits<double>::infinity();
-    if (!shell_in_region(outer, region, outer_worst)) return false;
-    double outer_radius_ratio = 1;
-    for (TetId x : outer.tets) outer_radius_ratio = std::min(outer_radius_ratio, radius_ratio(m_, x));
+    if (!removable_shell(u, v, t, outer) || !shell_in_region(outer, region, outer_worst)) return false;
     mesh::RingObjective any_valid = objective_;
     any_valid.floor = 0;  // the measures are non-negative on valid tetrahedra
     for (std::size_t i = 0; i < outer.size(); ++i) {
@@ -235,65 +231,51 @@ bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
             if (c_.is_surface_edge(end, r)) continue;
             mesh::Shell& inner = shell_;
             double worst = outer_worst;
-            if (!mesh::shell(m_, end, r, outer.tets[i], inner, kMaxShell) || inner.size() < 3 || inner.has_ghost() ||
-                !shell_in_region(inner, region, worst))
+            if (!removable_shell(end, r, outer.tets[i], inner) || !shell_in_region(inner, region, worst) ||
+                !mesh::best_ring_triangulation(m_, end, r, inner, triangles_, nullptr, any_valid))
                 continue;
-            if (!mesh::best_ring_triangulation(m_, end, r, inner, triangles_, nullptr, any_valid)) continue;
-            double worst_radius_ratio = outer_radius_ratio;
-            for (TetId x : inner.tets) worst_radius_ratio = std::min(worst_radius_ratio, radius_ratio(m_, x));
-            note_replaced(outer.tets);
-            note_replaced(inner.tets);
+            // Both shells, by their corners: the first removal frees their slots.
+            std::vector<Corners> replaced;
+            for (const mesh::Shell* shell : {&outer, &inner})
+                for (TetId x : shell->tets) replaced.push_back(corners_of(m_, x));
             m_.open_journal();
-            std::vector<TetId> first;
-            const bool done = mesh::transform_shell(m_, end, r, inner, triangles_, &first) == mesh::FlipResult::kDone;
-            if (done && undo_unless_better(u, v, worst, worst_radius_ratio, first, region)) {
-                ++after_another_done;
-                return true;
-            }
-            if (!done) {  // nothing changed; the journal is closed as it is opened, in this scope
-                m_.undo_journal();
-                m_.close_journal();
-            }
-            replacing_.clear();
+            std::vector<TetId> first, made;
+            const bool kept =
+                mesh::transform_shell(m_, end, r, inner, triangles_, &first) == mesh::FlipResult::kDone &&
+                second_removal_beats(u, v, worst, replaced, first, made);
+            if (!kept) m_.undo_journal();
+            m_.close_journal();
+            if (!kept) continue;
+            if (log) replacing_ = std::move(replaced);
+            adopt(made, region);
+            ++after_another_done;
+            return true;
         }
     }
     return false;
 }
 
 // The second removal of remove_edge_after_another, uv's, after the first
-// made `first` (the journal open since before it): kept, and the journal
-// closed, when every tetrahedron the two leave beats `worst` by kGain
-// (and keeps radius_ratio_floor_ against `worst_radius_ratio`, both over
-// all they replaced); else both are undone and the journal closed.
-bool Flipper::undo_unless_better(VertexId u, VertexId v, double worst, double worst_radius_ratio,
-                                 const std::vector<TetId>& first, std::int32_t region) {
-    const auto has = [&](TetId x, VertexId w) {
-        const VertexId* c = m_.vertices(x);
-        return std::find(c, c + 4, w) != c + 4;
-    };
-    const auto at_uv = std::find_if(first.begin(), first.end(), [&](TetId x) { return has(x, u) && has(x, v); });
+// made `first`: done, and true, when every tetrahedron the two leave
+// (`made`, the second's and the first's it left) beats `worst` by kGain
+// and keeps radius_ratio_floor_ against all they replaced. The caller
+// undoes both otherwise.
+bool Flipper::second_removal_beats(VertexId u, VertexId v, double worst, const std::vector<Corners>& replaced,
+                                   const std::vector<TetId>& first, std::vector<TetId>& made) {
+    const auto at_uv = std::find_if(first.begin(), first.end(), [&](TetId x) { return mesh::holds_edge(m_, x, u, v); });
     mesh::Shell& second = shell_;
     objective_.floor = worst * kGain;
-    std::vector<TetId> made;
-    bool better = at_uv != first.end() && mesh::shell(m_, u, v, *at_uv, second, kMaxShell) && second.size() >= 3 &&
-                  !second.has_ghost() &&
-                  mesh::best_ring_triangulation(m_, u, v, second, triangles_, nullptr, objective_) &&
-                  mesh::transform_shell(m_, u, v, second, triangles_, &made) == mesh::FlipResult::kDone;
-    if (better) {
-        // The first removal's tetrahedra that the second left stay too.
-        for (TetId x : first)
-            if (std::find(second.tets.begin(), second.tets.end(), x) == second.tets.end()) made.push_back(x);
-        const double floor = std::min(radius_ratio_floor_, worst_radius_ratio);
-        for (TetId x : made) {
-            const VertexId* w = m_.vertices(x);
-            better = better && q(w[0], w[1], w[2], w[3]) > worst * kGain &&
-                     (radius_ratio_floor_ <= 0 || radius_ratio(m_, x) >= floor);
-        }
-    }
-    if (!better) m_.undo_journal();
-    m_.close_journal();
-    if (better) adopt(made, region);
-    return better;
+    if (at_uv == first.end() || !removable_shell(u, v, *at_uv, second) ||
+        !mesh::best_ring_triangulation(m_, u, v, second, triangles_, nullptr, objective_) ||
+        mesh::transform_shell(m_, u, v, second, triangles_, &made) != mesh::FlipResult::kDone)
+        return false;
+    for (TetId x : first)
+        if (std::find(second.tets.begin(), second.tets.end(), x) == second.tets.end()) made.push_back(x);
+    const bool beats = std::all_of(made.begin(), made.end(), [&](TetId x) {
+        const VertexId* w = m_.vertices(x);
+        return q(w[0], w[1], w[2], w[3]) > worst * kGain;
+    });
+    return beats && (radius_ratio_floor_ <= 0 || keeps_radius_ratio(replaced, made));
 }
 
 // 2-3 flip across face f of t: the two tetrahedra become three around the
@@ -338,9 +320,9 @@ bool Flipper::try_face(TetId t, int f) {
 template <typename Replaced, typename Made>
 bool Flipper::keeps_radius_ratio(const Replaced& replaced, const Made& made) const {
     double worst = radius_ratio_floor_;
-    for (TetId t : replaced) worst = std::min(worst, radius_ratio(m_, t));
-    for (const std::array<VertexId, 4>& w : made)
-        if (radius_ratio(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) < worst) return false;
+    for (const auto& t : replaced) worst = std::min(worst, radius_ratio(m_, t));
+    for (const auto& w : made)
+        if (radius_ratio(m_, w) < worst) return false;
     return true;
 }
 
@@ -371,7 +353,7 @@ std::size_t improve_by_flips(RefineContext& c, double threshold) {
 }
 
 DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                         int max_sweeps, std::vector<FlipRecord>* log) {
+                                         int max_sweeps, std::vector<TetChange>* log) {
     // The radius ratio first: cheaper, and most tetrahedra are above the
     // bound it puts on the angle.
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);

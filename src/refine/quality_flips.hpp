@@ -11,7 +11,6 @@
 // and no new edge breaks the size bound.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -42,12 +41,8 @@ struct DihedralFlips {
     std::size_t flips = 0;          // flips done, each removal of a pair counted
     std::size_t after_another = 0;  // of them, pairs of edge removals
 };
-// For tests: the corners of the tetrahedra one flip (or pair) replaced
-// and of those it made.
-struct FlipRecord {
-    std::vector<std::array<mesh::VertexId, 4>> replaced, made;
-};
+// `log`, for tests, gets each flip (a pair as one).
 DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                         int max_sweeps, std::vector<FlipRecord>* log = nullptr);
+                                         int max_sweeps, std::vector<TetChange>* log = nullptr);
 
 }  // namespace cbr::refine

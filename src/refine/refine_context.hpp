@@ -5,6 +5,7 @@
 // input edges (never split) and the vertices that must not move.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +16,13 @@
 #include "refine/sizing_field.hpp"
 
 namespace cbr::refine {
+
+// For tests, the logs of the steps after the optimisation passes: one
+// change, by the corners of the tetrahedra it replaced and of those it
+// made (improve_dihedrals_by_flips, rescue_small_angles).
+struct TetChange {
+    std::vector<std::array<mesh::VertexId, 4>> replaced, made;
+};
 
 class RefineContext {
 public:

@@ -11,6 +11,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
+#include "refine/compass_search.hpp"
 #include "refine/deepest_point.hpp"
 #include "refine/tet_measures.hpp"
 
@@ -65,7 +66,7 @@ public:
         : c_(c), m_(c.m), threshold_(threshold), measure_(judged_by) {}
     bool remove(TetId sliver);
     bool rescue(TetId sliver);
-    bool rescue_angle(TetId sliver, std::vector<AngleRescue>* log);
+    bool rescue_angle(TetId sliver, std::vector<TetChange>* log);
     // Cavities not rated: a boundary face caps every star (no_star_beats).
     std::size_t skipped() const { return skipped_; }
 
@@ -292,24 +293,8 @@ void SliverRemover::climb(TetId sliver, Point& p, double& q) const {
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) step += std::sqrt(squared_distance(m_.point(v[i]), m_.point(v[j])));
     step /= 6 * 4;
-    for (int halvings = 0; halvings < kClimbHalvings;) {
-        Point next = p;
-        double q_next = q;
-        for (int axis = 0; axis < 3; ++axis)
-            for (double sign : {-1.0, 1.0}) {
-                Point c = p;
-                c[static_cast<std::size_t>(axis)] += sign * step;
-                const double qc = star_quality(c.data(), q_next);
-                if (qc > q_next) q_next = qc, next = c;
-            }
-        if (q_next > q) {
-            p = next;
-            q = q_next;
-        } else {
-            step /= 2;
-            ++halvings;
-        }
-    }
+    compass_search(p, q, step, kClimbHalvings,
+                   [&](const Point& c, double to_beat) { return star_quality(c.data(), to_beat); });
 }
 
 // The shells of the sliver's two widest edges as cavities (when they are
@@ -458,20 +443,16 @@ bool SliverRemover::rescue(TetId sliver) {
 // too, then climbed) often is far better (golf ball: 0.49 deg). Taken
 // when it beats the shell's smallest angle by kAngleGain and keeps its
 // radius ratios (keeps_radius_ratio).
-bool SliverRemover::rescue_angle(TetId sliver, std::vector<AngleRescue>* log) {
+bool SliverRemover::rescue_angle(TetId sliver, std::vector<TetChange>* log) {
     if (has_movable_vertex(sliver)) return false;
     Choice best;
     rate_shells(sliver, {0, kAngleGain, true}, best);
-    AngleRescue rescued;
-    const auto corners = [&](TetId t) {
-        const VertexId* v = m_.vertices(t);
-        return std::array<VertexId, 4>{v[0], v[1], v[2], v[3]};
-    };
+    TetChange rescued;
     if (log)
-        for (TetId t : best.cavity) rescued.replaced.push_back(corners(t));
+        for (TetId t : best.cavity) rescued.replaced.push_back(corners_of(m_, t));
     if (!insert(sliver, best)) return false;
     if (log) {
-        for (TetId t : star_) rescued.made.push_back(corners(t));
+        for (TetId t : star_) rescued.made.push_back(corners_of(m_, t));
         log->push_back(std::move(rescued));
     }
     return true;
@@ -576,17 +557,14 @@ std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stat
 }
 
 std::size_t rescue_small_angles(RefineContext& c, double below_degrees, double threshold, RefineStats& stats,
-                                std::vector<AngleRescue>* log) {
+                                std::vector<TetChange>* log) {
     SliverRemover remover(c, threshold, min_dihedral);
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
-    for (TetId t = 0; t < slots; ++t) {
-        if (!c.in_domain(t) || radius_ratio(c.m, t) >= q_bound) continue;
-        const VertexId* v = c.m.vertices(t);
-        if (min_dihedral(c.m.point(v[0]), c.m.point(v[1]), c.m.point(v[2]), c.m.point(v[3])) < below_degrees)
+    for (TetId t = 0; t < slots; ++t)
+        if (c.in_domain(t) && has_dihedral_below(c.m, t, below_degrees, q_bound))
             inserted += remover.rescue_angle(t, log);
-    }
     stats.sliver_cavities_skipped += remover.skipped();
     return inserted;
 }

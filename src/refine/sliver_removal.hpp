@@ -34,7 +34,6 @@
 // angle (the radius ratio can rise while it falls).
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -69,10 +68,7 @@ std::size_t rescue_flat_slivers(RefineContext& c, double threshold, RefineStats&
 // smallest angle and makes no tetrahedron under both `threshold` and the
 // shell's worst radius ratio. Returns the number of points inserted;
 // `log`, for tests, gets each one's replaced tetrahedra and star.
-struct AngleRescue {
-    std::vector<std::array<mesh::VertexId, 4>> replaced, made;
-};
 std::size_t rescue_small_angles(RefineContext& c, double below_degrees, double threshold, RefineStats& stats,
-                                std::vector<AngleRescue>* log = nullptr);
+                                std::vector<TetChange>* log = nullptr);
 
 }  // namespace cbr::refine

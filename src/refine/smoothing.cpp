@@ -9,6 +9,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/slot_marks.hpp"
+#include "refine/compass_search.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -289,11 +290,8 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio) const {
 bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio) {
     if (!mesh::ball(m_, v, start, ball_)) return false;
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
-    const bool wanted = std::any_of(ball_.begin(), ball_.end(), [&](TetId t) {
-        const VertexId* w = m_.vertices(t);
-        return radius_ratio(m_, t) < q_bound &&
-               min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) < below_degrees;
-    });
+    const bool wanted = std::any_of(ball_.begin(), ball_.end(),
+                                    [&](TetId t) { return has_dihedral_below(m_, t, below_degrees, q_bound); });
     if (!wanted || !collect_link(v)) return false;
     const Point here = {m_.point(v)[0], m_.point(v)[1], m_.point(v)[2]};
     const BallAngles old = rate_angles(keep_radius_ratio);
@@ -308,25 +306,11 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     step /= 4 * static_cast<double>(neighbours_.size());
     Point p = here;
     double angle = old.smallest;
-    for (int halvings = 0; halvings < kAngleHalvings;) {
-        Point next = p;
-        double next_angle = angle;
-        for (std::size_t axis = 0; axis < 3; ++axis)
-            for (double sign : {-1.0, 1.0}) {
-                Point trial = p;
-                trial[axis] += sign * step;
-                m_.set_point(v, trial.data());
-                const BallAngles r = rate_angles(keep_radius_ratio);
-                if (acceptable(r, next_angle)) next = trial, next_angle = r.smallest;
-            }
-        if (next_angle > angle) {
-            p = next;
-            angle = next_angle;
-        } else {
-            step /= 2;
-            ++halvings;
-        }
-    }
+    compass_search(p, angle, step, kAngleHalvings, [&](const Point& trial, double to_beat) {
+        m_.set_point(v, trial.data());
+        const BallAngles r = rate_angles(keep_radius_ratio);
+        return acceptable(r, to_beat) ? r.smallest : -1.0;
+    });
     const bool moved = angle > old.smallest * kAngleGain;
     m_.set_point(v, moved ? p.data() : here.data());
     if (moved)
@@ -343,12 +327,9 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
     // none, and rating every ball was 2% of homer's mesh generation.
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
     std::vector<char> near_small_angle(c.m.vertex_count(), 0);
-    for (TetId t = 0; t < c.m.slot_count(); ++t) {
-        if (!c.in_domain(t) || radius_ratio(c.m, t) >= q_bound) continue;
-        const VertexId* w = c.m.vertices(t);
-        if (min_dihedral(c.m.point(w[0]), c.m.point(w[1]), c.m.point(w[2]), c.m.point(w[3])) < below_degrees)
-            for (int i = 0; i < 4; ++i) near_small_angle[w[i]] = 1;
-    }
+    for (TetId t = 0; t < c.m.slot_count(); ++t)
+        if (c.in_domain(t) && has_dihedral_below(c.m, t, below_degrees, q_bound))
+            for (int i = 0; i < 4; ++i) near_small_angle[c.m.vertex(t, i)] = 1;
     const std::vector<TetId> incident = mesh::incident_tets(c.m);
     Smoother s(c);
     std::size_t moved = 0;

@@ -123,6 +123,12 @@ double oriented_min_dihedral(const double* a, const double* b, const double* c, 
 
 double radius_ratio_bound_for_dihedral(double degrees) { return 6 * std::sin(degrees * (kPi / 360)); }
 
+bool has_dihedral_below(const mesh::TetMesh& m, mesh::TetId t, double degrees, double q_bound) {
+    if (radius_ratio(m, t) >= q_bound) return false;
+    const mesh::VertexId* v = m.vertices(t);
+    return min_dihedral(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])) < degrees;
+}
+
 // 3 r / R = 3 (A / s) / (xyz / 4A) = 24 A^2 / (perimeter xyz), x, y, z the
 // edge lengths, A^2 = |(b - a) x (c - a)|^2 / 4; with the perimeter taken
 // as twice the longest edge L (at most 1.5 times too small, and exact in

@@ -29,6 +29,16 @@ inline double radius_ratio(const mesh::TetMesh& m, mesh::TetId t) {
     const mesh::VertexId* v = m.vertices(t);
     return radius_ratio(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
 }
+// A tetrahedron by its corners (one that may no longer be in m), and its
+// radius ratio.
+using Corners = std::array<mesh::VertexId, 4>;
+inline Corners corners_of(const mesh::TetMesh& m, mesh::TetId t) {
+    const mesh::VertexId* v = m.vertices(t);
+    return {v[0], v[1], v[2], v[3]};
+}
+inline double radius_ratio(const mesh::TetMesh& m, const Corners& w) {
+    return radius_ratio(m.point(w[0]), m.point(w[1]), m.point(w[2]), m.point(w[3]));
+}
 
 // The radius ratio of abcd when it is positively oriented (exact), else
 // -infinity: the measure quality flips maximize over ring triangulations
@@ -60,6 +70,10 @@ double oriented_min_dihedral(const double* a, const double* b, const double* c, 
 // insphere lies in the wedge of that angle, so r_in <= L sin(angle / 2),
 // L the longest edge, and r_circ >= L / 2.
 double radius_ratio_bound_for_dihedral(double degrees);
+// Whether tetrahedron t has a dihedral angle below `degrees`, its radius
+// ratio tested first against `q_bound` = radius_ratio_bound_for_dihedral
+// (degrees), which most tetrahedra are above.
+bool has_dihedral_below(const mesh::TetMesh& m, mesh::TetId t, double degrees, double q_bound);
 
 // An upper bound on the radius ratio of every tetrahedron with face abc,
 // whatever its fourth corner: 3 r / R of the triangle (r, R its in- and
