@@ -114,6 +114,44 @@ TEST_CASE("a surface made of Delaunay faces is recovered as is, and its regions 
     CHECK(region_volume == doctest::Approx(inside_volume).epsilon(1e-12));
 }
 
+TEST_CASE("input triangles are found by their vertices, and their edges by their ends") {
+    // A fan of 40 triangles around hub 0 (its 40 edges: the lookup's long
+    // list), listed out of order, each rim edge shared by two triangles,
+    // and a strip whose ids are not in ascending order; vertex 41 is used
+    // by no triangle.
+    std::vector<Triangle> tris;
+    constexpr VertexId kRim = 40;
+    for (VertexId j = 0; j < kRim; ++j) {
+        const VertexId i = (7 * j) % kRim + 1;
+        tris.push_back({0, i, i % kRim + 1});
+    }
+    for (VertexId i = 1; i <= kRim; ++i) tris.push_back({i % kRim + 1, i, 45});
+    tris.push_back({47, 43, 44});
+    tris.push_back({44, 46, 42});
+    const ConstraintFaces faces(tris, {});
+    std::set<std::pair<VertexId, VertexId>> edges;
+    for (const auto& t : tris)
+        for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    // Every pair of ids, both orders, against the set of edges.
+    for (VertexId a = 0; a < 50; ++a)
+        for (VertexId b = 0; b < 50; ++b) {
+            const bool expected = edges.count(std::minmax(a, b)) > 0;
+            if (faces.has_edge(a, b) != expected) FAIL_CHECK("edge " << a << "-" << b << ": expected " << expected);
+        }
+    CHECK(faces.has_edge(0, 40));
+    CHECK(faces.has_edge(46, 44));
+    CHECK_FALSE(faces.has_edge(0, 45));
+    CHECK_FALSE(faces.has_edge(41, 42));
+    CHECK_FALSE(faces.has_edge(0, cbr::mesh::kGhostVertex));
+    CHECK_FALSE(faces.has_edge(cbr::mesh::kGhostVertex, 44));
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        const auto& t = tris[i];
+        CHECK(faces.find(t[2], t[0], t[1]) == i);
+        CHECK(faces.find(t[1], t[0], t[2]) == i);
+    }
+    CHECK(faces.find(0, 1, 3) == ConstraintFaces::npos);
+}
+
 TEST_CASE("region numbers follow the input, not the storage") {
     // Two disjoint balls of tetrahedra: the one bounded by triangle 0 on its
     // normal's side is region 1.

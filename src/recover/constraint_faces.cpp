@@ -27,6 +27,44 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
         const Triangle k = sorted(triangles_[i][0], triangles_[i][1], triangles_[i][2]);
         entries_[fill[k[0]]++] = Entry{k[1], k[2], static_cast<std::uint32_t>(i)};
     }
+    index_edges(n);
+}
+
+// Each triangle's three edges under their smaller vertex, then each
+// vertex's list sorted and its repeats (an edge of two or more triangles)
+// dropped, the lists closed up in place.
+void ConstraintFaces::index_edges(std::size_t n) {
+    std::vector<std::uint32_t> start(n + 1, 0);
+    for (const Triangle& t : triangles_)
+        for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    edge_ends_.resize(3 * triangles_.size());
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const Triangle& t : triangles_)
+        for (int k = 0; k < 3; ++k) {
+            const mesh::VertexId a = t[k], b = t[(k + 1) % 3];
+            edge_ends_[fill[std::min(a, b)]++] = std::max(a, b);
+        }
+    edge_first_.assign(n + 1, 0);
+    std::size_t kept = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        const auto begin = edge_ends_.begin() + start[v], end = edge_ends_.begin() + start[v + 1];
+        std::sort(begin, end);
+        for (auto e = begin; e != end; ++e)
+            if (e == begin || *e != *(e - 1)) edge_ends_[kept++] = *e;
+        edge_first_[v + 1] = static_cast<std::uint32_t>(kept);
+    }
+    edge_ends_.resize(kept);
+    edge_ends_.shrink_to_fit();
+}
+
+bool ConstraintFaces::has_edge(mesh::VertexId a, mesh::VertexId b) const {
+    if (a > b) std::swap(a, b);
+    if (std::size_t{a} + 1 >= edge_first_.size()) return false;
+    const auto begin = edge_ends_.begin() + edge_first_[a], end = edge_ends_.begin() + edge_first_[a + 1];
+    // Mostly a handful; the hub of a fanned CAD cap has hundreds.
+    if (end - begin <= 16) return std::find(begin, end, b) != end;
+    return std::binary_search(begin, end, b);
 }
 
 std::size_t ConstraintFaces::find(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) const {

@@ -9,7 +9,6 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/failed_rings.hpp"
-#include "mesh/key_table.hpp"
 #include "mesh/flips.hpp"
 #include "recover/failed_searches.hpp"
 #include "recover/segment_walk.hpp"
@@ -82,10 +81,6 @@ public:
     FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo, FlipDirection direction)
         : m_(m), faces_(faces), memo_(memo), direction_(direction) {
         incident_ = mesh::incident_tets(m_);
-        for (std::size_t i = 0; i < faces_.size(); ++i) {
-            const Triangle& t = faces_.triangle(i);
-            for (int k = 0; k < 3; ++k) input_edges_[edge_key(t[k], t[(k + 1) % 3])] = true;
-        }
         protect_ = [this](VertexId a, VertexId b) { return is_input_edge(a, b); };
         changed_at_.assign(m_.vertex_count(), 0);
         incident_saved_at_.assign(m_.vertex_count(), 0);
@@ -94,7 +89,7 @@ public:
 
     void set_search(const Search& s) { search_ = s; }
 
-    bool is_input_edge(VertexId a, VertexId b) const { return input_edges_.find(edge_key(a, b)) != nullptr; }
+    bool is_input_edge(VertexId a, VertexId b) const { return faces_.has_edge(a, b); }
 
     // One attempt at face i (with a rollback when `rollback` and it fails);
     // the vertices of the tetrahedra it leaves in the mesh are stamped with
@@ -419,7 +414,6 @@ private:
     bool journal_incident_ = false;
     std::vector<std::pair<VertexId, TetId>> incident_undo_;
     std::vector<std::uint64_t> incident_saved_at_;
-    mesh::KeyTable<bool> input_edges_;
     mesh::EdgeProtect protect_;
     // Kept through rollbacks: a ring without a valid triangulation stays so.
     mesh::FailedRings failed_rings_;

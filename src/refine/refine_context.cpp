@@ -7,19 +7,10 @@
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
-namespace {
-
-std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
-}
-
-}  // namespace
-
 RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces& faces,
                              std::vector<std::int32_t> region, const std::vector<mesh::VertexId>& movable,
                              const RefineOptions& opts)
-    : m(mesh), options(opts), size(mesh, faces, opts), region_(std::move(region)) {
+    : m(mesh), options(opts), size(mesh, faces, opts), faces_(faces), region_(std::move(region)) {
     surface_vertex_.assign(m.vertex_count(), 0);
     movable_.assign(m.vertex_count(), 0);
     for (mesh::VertexId v : movable)
@@ -33,7 +24,6 @@ RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces
                              ? std::sqrt(r2) : 0;
         for (int k = 0; k < 3; ++k) {
             surface_vertex_[t[k]] = 1;
-            surface_edges_[edge_key(t[k], t[(k + 1) % 3])] = true;
             reach_[t[k]] = std::max(reach_[t[k]], r);
         }
     }
@@ -59,7 +49,7 @@ void RefineContext::touch(mesh::TetId t) {
 
 bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const {
     if (!is_surface_vertex(a) || !is_surface_vertex(b)) return false;
-    return surface_edges_.find(edge_key(a, b)) != nullptr;
+    return faces_.has_edge(a, b);
 }
 
 double RefineContext::edge_size(mesh::VertexId a, mesh::VertexId b) const {

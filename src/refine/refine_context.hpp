@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
 #include "refine/refine_options.hpp"
@@ -78,13 +77,13 @@ public:
     const std::vector<std::int32_t>& regions() const { return region_; }
 
 private:
+    const recover::ConstraintFaces& faces_;  // outlives the context (is_surface_edge)
     std::vector<std::int32_t> region_;
     std::vector<std::uint32_t> stamp_;  // per slot: the pass that last created or reshaped it
     std::uint32_t pass_ = 0;            // 0 during refinement, then 1, 2, ... per optimisation pass
     std::vector<char> surface_vertex_;
     std::vector<double> reach_;  // per surface vertex: largest circumradius of its input triangles
     std::vector<char> movable_;
-    mesh::KeyTable<bool> surface_edges_;
 };
 
 }  // namespace cbr::refine
