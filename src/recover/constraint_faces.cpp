@@ -33,7 +33,8 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
 // Each triangle's three edges under their smaller vertex, then each
 // vertex's list sorted and its repeats (an edge of two or more triangles)
 // dropped, the lists closed up in place.
-void ConstraintFaces::index_edges(std::size_t n) {
+void ConstraintFaces::index_edges(std::size_t vertex_bound) {
+    const std::size_t n = vertex_bound;
     std::vector<std::uint32_t> start(n + 1, 0);
     for (const Triangle& t : triangles_)
         for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];

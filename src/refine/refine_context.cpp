@@ -7,6 +7,7 @@
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
+
 RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces& faces,
                              std::vector<std::int32_t> region, const std::vector<mesh::VertexId>& movable,
                              const RefineOptions& opts)

@@ -27,7 +27,7 @@ class RefineContext {
 public:
     // `region`: per slot, from recover::classify_regions. `movable`: the
     // vertices optimisation may move (Steiner points of recovery); every
-    // vertex added later is movable.
+    // vertex added later is movable. `faces` must outlive the context.
     RefineContext(mesh::TetMesh& m, const recover::ConstraintFaces& faces, std::vector<std::int32_t> region,
                   const std::vector<mesh::VertexId>& movable, const RefineOptions& options);
 
