@@ -10,7 +10,11 @@ exactly planar, which is what the robustness sweeps of README
 The caps are fanned from vertex 0 (bottom, normal -z) and vertex N (top,
 normal +z); each side quad is two triangles. Outward orientation."""
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rotate_surface import write_triangles  # noqa: E402  (the benchmark scripts' OFF writer)
 
 
 def prism(n, radius, height):
@@ -31,12 +35,7 @@ def main():
     if n < 3 or not radius > 0 or not height > 0:
         sys.exit('fan_cap_prism.py: N must be at least 3, RADIUS and HEIGHT positive')
     points, tris = prism(n, radius, height)
-    with open(out, 'w') as f:
-        f.write('OFF\n%d %d 0\n' % (len(points), len(tris)))
-        for p in points:
-            f.write('%r %r %r\n' % p)
-        for t in tris:
-            f.write('3 %d %d %d\n' % t)
+    write_triangles(out, points, tris)
 
 
 if __name__ == '__main__':

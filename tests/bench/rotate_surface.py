@@ -32,6 +32,17 @@ def read_off(path):
     return points, faces
 
 
+def write_triangles(path, points, triangles):
+    """An OFF file of points (3 floats each, written exactly) and
+    triangles (3 indices each)."""
+    with open(path, 'w') as f:
+        f.write('OFF\n%d %d 0\n' % (len(points), len(triangles)))
+        for p in points:
+            f.write('%r %r %r\n' % tuple(p))
+        for t in triangles:
+            f.write('3 %d %d %d\n' % tuple(t))
+
+
 def transform(seed):
     rng = random.Random(seed)
     q = [rng.gauss(0, 1) for _ in range(4)]

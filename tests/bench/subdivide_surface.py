@@ -9,30 +9,24 @@ are missing after Delaunay than on a surface sampled as finely.
 
     subdivide_surface.py IN.off OUT.off [N]    (N: steps, default 1)
 
-Coordinates are written with 17 significant digits (exact for doubles);
-comments are dropped."""
+Coordinates are written exactly (Python's repr of each double); comments
+are dropped."""
+import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rotate_surface import read_off, write_triangles  # noqa: E402  (the benchmark scripts' OFF module)
 
-def read_off(path):
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            tokens += line.split('#')[0].split()
-    if not tokens or not tokens[0].upper().endswith('OFF'):
-        sys.exit(f'{path}: not an OFF file')
-    nv, nf = int(tokens[1]), int(tokens[2])
-    i = 4
-    points = [tuple(float(x) for x in tokens[i + 3 * k:i + 3 * k + 3]) for k in range(nv)]
-    i += 3 * nv
+
+def read_triangles(path):
+    """Points and triangles (tuples of three indices) of an OFF file."""
+    points, faces = read_off(path)
     triangles = []
-    for _ in range(nf):
-        k = int(tokens[i])
-        if k != 3:
-            sys.exit(f'{path}: a face with {k} corners (triangles only)')
-        triangles.append(tuple(int(x) for x in tokens[i + 1:i + 4]))
-        i += 1 + k
-    return points, triangles
+    for f in faces:
+        if int(f[0]) != 3:
+            sys.exit(f'{path}: a face with {f[0]} corners (triangles only)')
+        triangles.append(tuple(int(x) for x in f[1:4]))
+    return list(points), triangles
 
 
 def subdivide(points, triangles):
@@ -58,15 +52,10 @@ def main():
     steps = int(sys.argv[3]) if len(sys.argv) == 4 else 1
     if steps < 0:
         sys.exit('N: a number of steps, 0 or more')
-    points, triangles = read_off(sys.argv[1])
+    points, triangles = read_triangles(sys.argv[1])
     for _ in range(steps):
         triangles = subdivide(points, triangles)
-    with open(sys.argv[2], 'w') as f:
-        f.write(f'OFF\n{len(points)} {len(triangles)} 0\n')
-        for p in points:
-            f.write('%.17g %.17g %.17g\n' % p)
-        for t in triangles:
-            f.write('3 %d %d %d\n' % t)
+    write_triangles(sys.argv[2], points, triangles)
 
 
 if __name__ == '__main__':
