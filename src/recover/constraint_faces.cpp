@@ -11,6 +11,17 @@ Triangle sorted(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) {
     return t;
 }
 
+// Where each vertex's bucket starts when items are filed under a vertex
+// below n: entries [start[x], start[x + 1]) are x's. `for_each_key(file)`
+// calls file(x) once per item.
+template <class ForEachKey>
+std::vector<std::uint32_t> bucket_starts(std::size_t n, ForEachKey for_each_key) {
+    std::vector<std::uint32_t> start(n + 1, 0);
+    for_each_key([&](mesh::VertexId x) { ++start[x + 1]; });
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    return start;
+}
+
 }  // namespace
 
 ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<std::int32_t> labels)
@@ -18,9 +29,9 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
     labels_.resize(triangles_.size(), 0);
     std::size_t n = 0;
     for (const Triangle& t : triangles_) n = std::max<std::size_t>(n, std::max({t[0], t[1], t[2]}) + std::size_t{1});
-    first_.assign(n + 1, 0);
-    for (const Triangle& t : triangles_) ++first_[std::min({t[0], t[1], t[2]}) + 1];
-    for (std::size_t v = 0; v < n; ++v) first_[v + 1] += first_[v];
+    first_ = bucket_starts(n, [&](auto file) {
+        for (const Triangle& t : triangles_) file(std::min({t[0], t[1], t[2]}));
+    });
     entries_.resize(triangles_.size());
     std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
@@ -33,12 +44,11 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
 // Each triangle's three edges under their smaller vertex, then each
 // vertex's list sorted and its repeats (an edge of two or more triangles)
 // dropped, the lists closed up in place.
-void ConstraintFaces::index_edges(std::size_t vertex_bound) {
-    const std::size_t n = vertex_bound;
-    std::vector<std::uint32_t> start(n + 1, 0);
-    for (const Triangle& t : triangles_)
-        for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
-    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+void ConstraintFaces::index_edges(std::size_t n) {
+    const std::vector<std::uint32_t> start = bucket_starts(n, [&](auto file) {
+        for (const Triangle& t : triangles_)
+            for (int k = 0; k < 3; ++k) file(std::min(t[k], t[(k + 1) % 3]));
+    });
     edge_ends_.resize(3 * triangles_.size());
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (const Triangle& t : triangles_)

@@ -34,7 +34,7 @@ public:
     bool has_edge(mesh::VertexId a, mesh::VertexId b) const;
 
 private:
-    void index_edges(std::size_t vertex_bound);
+    void index_edges(std::size_t n);  // n: above every vertex id used
     // Lookup by smallest vertex: the triangles whose smallest vertex is x
     // are entries [first_[x], first_[x + 1]), as (middle, largest, index).
     // Two per vertex on average, and mesh faces met in storage order have

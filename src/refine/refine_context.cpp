@@ -48,10 +48,7 @@ void RefineContext::touch(mesh::TetId t) {
     stamp_[t] = pass_;
 }
 
-bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const {
-    if (!is_surface_vertex(a) || !is_surface_vertex(b)) return false;
-    return faces_.has_edge(a, b);
-}
+bool RefineContext::is_surface_edge(mesh::VertexId a, mesh::VertexId b) const { return faces_.has_edge(a, b); }
 
 double RefineContext::edge_size(mesh::VertexId a, mesh::VertexId b) const {
     const double mean = 0.5 * (size.at(a) + size.at(b));
