@@ -1204,3 +1204,51 @@ TEST_CASE("the undo journal puts back every slot, flag and the free list") {
     CHECK_FALSE((Snapshot(m) == before));
     require_valid(m);
 }
+
+TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahedron first, each group in ring order") {
+    // Checked on every interior edge of a Delaunay mesh of random points
+    // against orient3d directly: the ear (r[i-1], r[i], r[i+1]) is valid
+    // when it cones (.., v) and (.., u) with positive orientation.
+    const TetMesh m = delaunay_mesh(cbr::test::random_points(200, 33));
+    std::size_t edges = 0, blocking = 0, reordered = 0;
+    Shell s;
+    std::vector<std::size_t> order;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        for (int a = 0; a < 4; ++a)
+            for (int b = a + 1; b < 4; ++b) {
+                const VertexId u = m.vertex(t, a), v = m.vertex(t, b);
+                if (u > v) continue;  // each edge from a few tetrahedra at most; once per direction is enough
+                REQUIRE(shell(m, u, v, t, s));
+                if (s.has_ghost()) continue;
+                ++edges;
+                ring_positions_blocking_first(m, u, v, s, order);
+                const std::size_t n = s.size();
+                REQUIRE(order.size() == n);
+                std::vector<std::size_t> sorted = order;
+                std::sort(sorted.begin(), sorted.end());
+                for (std::size_t i = 0; i < n; ++i) REQUIRE(sorted[i] == i);
+                const auto ear_valid = [&](std::size_t i) {
+                    const double* p = m.point(s.ring[(i + n - 1) % n]);
+                    const double* q = m.point(s.ring[i]);
+                    const double* r = m.point(s.ring[(i + 1) % n]);
+                    return cbr::geom::orient3d(p, q, r, m.point(v)) > 0 && cbr::geom::orient3d(p, r, q, m.point(u)) > 0;
+                };
+                std::size_t first_valid = n;
+                for (std::size_t k = 0; k < n; ++k)
+                    if (ear_valid(order[k])) {
+                        first_valid = k;
+                        break;
+                    }
+                for (std::size_t k = first_valid; k < n; ++k) CHECK(ear_valid(order[k]));
+                for (std::size_t k = 1; k < n; ++k)
+                    if (k != first_valid) CHECK(order[k - 1] < order[k]);
+                blocking += first_valid;
+                for (std::size_t k = 0; k < n; ++k) reordered += order[k] != k;
+            }
+    }
+    MESSAGE(edges << " interior edges, " << blocking << " blocking ring vertices");
+    CHECK(edges > 100);
+    CHECK(blocking > 0);
+    CHECK(reordered > 0);
+}

@@ -95,6 +95,19 @@ FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& shell, c
 FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                            const std::vector<RingTriangle>& triangles, std::vector<TetId>* created = nullptr);
 
+// The positions of the shell's ring in the order in which a search that
+// removes an edge from u or v to a ring vertex first (flip recovery's
+// nested edge removals) should try them: first the vertices where the
+// ring is not convex as seen from u and v, whose ear (r[i-1], r[i],
+// r[i+1]) cones a tetrahedron that is not positively oriented (exact; a
+// ghost counts as remove_edge counts it), then the others, each group in
+// ring order. No valid triangulation of the ring has such an ear, so
+// each of them narrows the triangulations left; when none is left, taking
+// one of them out of the ring (removing the edge from u or v to it) is
+// the likeliest way to make one.
+void ring_positions_blocking_first(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                   std::vector<std::size_t>& order);
+
 // Shape quality of tetrahedron abcd: 72 sqrt(3) V / (sum of squared edge
 // lengths)^(3/2), 1 for the regular tetrahedron, in (0, 1] when
 // orient3d(a, b, c, d) > 0 (exact), -infinity otherwise.
