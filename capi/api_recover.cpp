@@ -43,16 +43,17 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
     return cbr::recover::ConstraintFaces(std::move(internal), std::move(label_list));
 }
 
-// One attempt of recovery from the Delaunay mesh as it is now, with the
-// deepest flip round's budget `budget` (0: the caller's options; another
-// budget also tries only the plain unblocking points,
-// kRetryUnblockingTries). The flips may run again from the Delaunay mesh
-// (recovery.cpp, kFlipRestartShare): rebuild() gives it back, bit for bit.
-cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces, int budget,
-                                     cbr::recover::RecoveryStats& stats) {
+// One attempt of recovery from the Delaunay mesh as it is now, from the
+// flip state `state` (its budget 0: the caller's; another budget also
+// tries only the plain unblocking points, kRetryUnblockingTries). The
+// flips may run again from the Delaunay mesh (recovery.cpp,
+// kFlipRestartShare): rebuild() gives it back, bit for bit.
+cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
+                                     const cbr::recover::FlipState& state, cbr::recover::RecoveryStats& stats) {
     cbr::recover::RecoveryOptions options = mesh.recovery_options;
-    if (budget != 0) {
-        options.deepest_flip_budget = budget;
+    options.nested_order = state.nested;
+    if (state.deepest_budget != 0) {
+        options.deepest_flip_budget = state.deepest_budget;
         options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryUnblockingTries);
     }
     const std::function<void()> delaunay_again = [&mesh] { mesh.delaunay.rebuild(); };
@@ -86,10 +87,12 @@ std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
 //   2. inside an enclosing box: the same with the corners of
 //      enclosing_box() added, so that every input triangle is interior to
 //      the mesh, away from its convex hull;
-//   3. on the Delaunay mesh again with the deepest flip round's budget at
-//      each of kRetryFlipBudgets (where the deepest round runs with its
-//      default budget: options.deep_flips, no deepest_flip_budget);
-//   4. those budgets inside the box.
+//   3. on the Delaunay mesh again from other flip states (FlipState), all
+//      with the nested removals in ring order: the options' budget (where
+//      the options have the blocking vertices first), then each of
+//      kRetryFlipBudgets (where the deepest round runs with its default
+//      budget: options.deep_flips, no deepest_flip_budget);
+//   4. those flip states inside the box.
 // The flips decide the mesh that conforming recovery and point splitting
 // start from. Where those fail (rounded points between nearly coplanar
 // faces of a surface turned in space) they fail in one flip state and not
@@ -117,7 +120,8 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
     // its corners would follow them.
     const std::vector<double> box = enclosing_box(mesh.delaunay.mesh());
     const auto box_first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
-    cbr::recover::RecoveryResult first = attempt(mesh, faces, 0, stats);
+    const cbr::recover::FlipState as_given{0, options.nested_order};
+    cbr::recover::RecoveryResult first = attempt(mesh, faces, as_given, stats);
     if (first.ok || !first.invalid.empty() || !options.retries) return first;
     std::optional<std::string> boxed_why;  // the first boxed attempt's reason, for the message
     // An attempt that ends the attempts (a success, or a broken invariant)
@@ -128,28 +132,31 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
         first = std::move(r);
         return true;
     };
-    // Attempts with `budgets` on the Delaunay mesh of the caller's points,
+    using States = std::vector<cbr::recover::FlipState>;
+    // Attempts from `states` on the Delaunay mesh of the caller's points,
     // each from that mesh built anew.
-    const auto outside = [&](const std::vector<int>& budgets) {
-        for (const int budget : budgets) {
+    const auto outside = [&](const States& states) {
+        for (const cbr::recover::FlipState& state : states) {
             mesh.delaunay.rebuild();
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, attempt_stats);
             if (ends(r, attempt_stats)) return true;
         }
         return false;
     };
-    // Attempts with `budgets` with the box's corners added: the first from
-    // the mesh they were inserted in, the others (budgets other than the
-    // default) from the mesh built anew with them, like every retry. The
+    // Attempts from `states` with the box's corners added: the first, when
+    // its budget is the options' own, from the mesh they were inserted in,
+    // the others from the mesh built anew with them, like every retry. The
     // corners stay for a success and go otherwise.
-    const auto inside = [&](const std::vector<int>& budgets) {
+    const auto inside = [&](const States& states) {
         mesh.delaunay.rebuild();
         if (!mesh.delaunay.insert_points(box.data(), 8).ok) return false;  // restored by insert_points
-        for (const int budget : budgets) {
-            if (budget != 0) mesh.delaunay.rebuild();
+        bool inserted = true;  // the mesh is the one the corners were inserted in
+        for (const cbr::recover::FlipState& state : states) {
+            if (!inserted || state.deepest_budget != 0) mesh.delaunay.rebuild();
+            inserted = false;
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, budget, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, attempt_stats);
             if (r.ok) {
                 ends(r, attempt_stats);
                 stats.steiner_generated += 8;
@@ -163,12 +170,17 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
         mesh.delaunay.drop_last_batch();
         return !first.invalid.empty();
     };
-    std::vector<int> retry_budgets;  // where the deepest round runs with its default budget
-    if (options.deep_flips && options.deepest_flip_budget == 0)
-        retry_budgets.assign(std::begin(cbr::recover::kRetryFlipBudgets), std::end(cbr::recover::kRetryFlipBudgets));
-    if (inside({0}) || outside(retry_budgets) || (!retry_budgets.empty() && inside(retry_budgets))) return first;
+    // The retries are the flip states of the attempts before session 33,
+    // all in ring order (FlipState), after the caller's own state in ring
+    // order when it is not.
+    constexpr cbr::recover::NestedOrder ring = cbr::recover::NestedOrder::kRing;
+    States retry_states;
+    if (as_given.nested != ring) retry_states.push_back({0, ring});
+    if (options.deep_flips && options.deepest_flip_budget == 0)  // the deepest round runs with its default budget
+        for (const int budget : cbr::recover::kRetryFlipBudgets) retry_states.push_back({budget, ring});
+    if (inside({as_given}) || outside(retry_states) || (!retry_states.empty() && inside(retry_states))) return first;
     const std::string others =
-        retry_budgets.empty() ? "" : " (and from " + std::to_string(retry_budgets.size()) + " other flip states)";
+        retry_states.empty() ? "" : " (and from " + std::to_string(retry_states.size()) + " other flip states)";
     first.why += others;
     if (boxed_why) first.why += " (and inside an enclosing box: " + *boxed_why + others + ")";
     return first;

@@ -161,9 +161,9 @@ run_local_outputs() {
     fi
 
     # --json for failed runs too: status, exit code, error; no mesh.
-    expect 3 "could not recover triangle" recover "$tmp/pierced-27.off" -o "$tmp/pierced-27.mesh" --json "$tmp/pierced-27.json" &&
-        no_file "$tmp/pierced-27.mesh"
-    json_has "$tmp/pierced-27.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
+    expect 3 "could not recover triangle" recover "$tmp/fails.off" -o "$tmp/fails.mesh" --no-retries --json "$tmp/fails.json" &&
+        no_file "$tmp/fails.mesh"
+    json_has "$tmp/fails.json" 'd["status"] == "recovery_failed" and d["exit_code"] == 3' \
         'd["output"] is None and "could not recover" in d["error"]' \
         'd["table_one"]["missing_faces"] > 0 and d["table_two"] is None and d["mesh"] is None'
     expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh" --json "$tmp/missing.json"
@@ -238,10 +238,10 @@ run_local_outputs() {
         "$mesh_info" "$tmp/cube-mesh.mesh" "$tmp/cube.off" > "$tmp/info" 2>&1 ||
             fail "cube-mesh.mesh read back: $(cat "$tmp/info")"
     fi
-    # Exit 3 when recovery fails (the CSG cross of tests/data/io fails today).
-    expect 3 "could not recover triangle" mesh "$tmp/pierced-27.off" -o "$tmp/pierced-mesh.mesh" --json "$tmp/pierced-mesh.json" &&
-        no_file "$tmp/pierced-mesh.mesh"
-    json_has "$tmp/pierced-mesh.json" 'd["command"] == "mesh" and d["status"] == "recovery_failed" and d["refine"] is None'
+    # Exit 3 when recovery fails.
+    expect 3 "could not recover triangle" mesh "$tmp/fails.off" -o "$tmp/fails-mesh.mesh" --no-retries --json "$tmp/fails-mesh.json" &&
+        no_file "$tmp/fails-mesh.mesh"
+    json_has "$tmp/fails-mesh.json" 'd["command"] == "mesh" and d["status"] == "recovery_failed" and d["refine"] is None'
     expect 1 "--size needs a finite length > 0, not '-1'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size -1
     expect 1 "--size needs a length" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --size
     expect 1 "--growth needs a rate within \[0, 100\], not '-0.5'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --growth -0.5
@@ -395,11 +395,14 @@ run_local() {
         report_has "^  Steiner points inside the domain    +[1-9][0-9]*\$"
     json_has "$tmp/prism.json" 'd["status"] == "ok" and d["table_one"]["steiner_remaining"] >= 1' \
         '1 <= d["table_one"]["steiner_inside"] <= d["table_one"]["steiner_remaining"]'
-    # A tetrahedron surface pierced near one face (the generator of
-    # test_conforming_split.cpp) still defeats conforming recovery: a clean
-    # failure.
-    cp "$io_data/pierced-27.off" "$tmp/pierced-27.off"
-    expect 3 "could not recover triangle" recover "$tmp/pierced-27.off" -o "$tmp/pierced-27.mesh" && no_file "$tmp/pierced-27.mesh"
+    # A turned fan-cap prism (tests/data/recover/prism-96-fan-caps-h3-r12.off)
+    # defeats conforming recovery in the first attempt (the enclosing box,
+    # the second, recovers it): a clean failure with --no-retries. Until
+    # session 33 a pierced tetrahedron surface (tests/data/io/pierced-27.off)
+    # served, failing in every attempt.
+    cp "$io_data/../recover/prism-96-fan-caps-h3-r12.off" "$tmp/fails.off"
+    expect 3 "could not recover triangle" recover "$tmp/fails.off" -o "$tmp/fails.mesh" --no-retries && no_file "$tmp/fails.mesh"
+    expect 0 "" recover "$tmp/fails.off" -o "$tmp/fails-retried.mesh"
 
     run_local_outputs "${2:-}"
 }

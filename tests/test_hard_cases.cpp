@@ -75,6 +75,7 @@ const std::vector<HardCase>& hard_cases() {
         {"chazelle", [] { return cbr::test::chazelle_polyhedron(); }, 1, cbr::test::chazelle_volume(), true, true},
         {"prism-48-fan-caps-q4", fixture("prism-48-fan-caps-q4.off"), 1, 0, true, true},
         {"prism-64-fan-caps-q3", fixture("prism-64-fan-caps-q3.off"), 1, 0, true, true},
+        {"prism-64-fan-caps-h20-q2", fixture("prism-64-fan-caps-h20-q2.off"), 1, 0, true, true},
         {"prism-96-fan-caps-q1", fixture("prism-96-fan-caps-q1.off"), 1, 0, true, true},
     };
     return cases;

@@ -144,6 +144,18 @@ bool shared_surface(const std::string& name, cbr::test::OffSurface& out) {
     return true;
 }
 
+// The recovery that the tests below refine: the flips' nested removals in
+// ring order (NestedOrder::kRing), the meshes on which their measured
+// thresholds were taken. (With the default order since session 33, the
+// thingicsg-cylinder's smallest angle after the flips for it is 0.42 deg
+// instead of 0.5 and more, and the 48-gon coin's flat tetrahedra leave no
+// edge removal pair to make.)
+cbr::recover::RecoveryOptions recovery_for_refine_tests() {
+    cbr::recover::RecoveryOptions options;
+    options.nested_order = cbr::recover::NestedOrder::kRing;
+    return options;
+}
+
 // Delaunay, recovery, regions, refinement through the core; then every
 // exact check of the header comment. `min_average`: the threshold on the
 // average radius ratio.
@@ -158,7 +170,7 @@ Outcome refine_and_check(const Surface& s, const cbr::refine::RefineOptions& opt
     const cbr::recover::ConstraintFaces faces(tris, {});
     cbr::recover::RecoveryStats rs;
     cbr::mesh::TetMesh& m = d.mesh_for_update();
-    const cbr::recover::RecoveryResult rr = cbr::recover::recover_faces(m, faces, rs);
+    const cbr::recover::RecoveryResult rr = cbr::recover::recover_faces(m, faces, rs, recovery_for_refine_tests());
     REQUIRE(rr.ok);
     const cbr::recover::RegionMap before = cbr::recover::classify_regions(m, faces);
     const auto vol_before = region_volumes(m, before.of_tet);
@@ -365,7 +377,8 @@ void recover_surface(const Surface& s, Recovered& r) {
         for (int k = 0; k < 3; ++k) r.tris[i][k] = r.d.internal_id(static_cast<VertexId>(s.tris[3 * i + k]));
     const cbr::recover::ConstraintFaces faces(r.tris, {});
     cbr::recover::RecoveryStats rs;
-    const cbr::recover::RecoveryResult rr = cbr::recover::recover_faces(r.d.mesh_for_update(), faces, rs);
+    const cbr::recover::RecoveryResult rr =
+        cbr::recover::recover_faces(r.d.mesh_for_update(), faces, rs, recovery_for_refine_tests());
     REQUIRE(rr.ok);
     r.steiner = rr.steiner;
     r.region = cbr::recover::classify_regions(r.d.mesh_for_update(), faces).of_tet;

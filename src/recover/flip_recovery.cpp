@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <numeric>
 #include <utility>
 #include <unordered_set>
 
@@ -78,8 +79,9 @@ std::uint64_t edge_key(VertexId a, VertexId b) {
 
 class FlipRecovery {
 public:
-    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo, FlipDirection direction)
-        : m_(m), faces_(faces), memo_(memo), direction_(direction) {
+    FlipRecovery(mesh::TetMesh& m, const ConstraintFaces& faces, FlipMemo memo, FlipDirection direction,
+                 NestedOrder nested)
+        : m_(m), faces_(faces), memo_(memo), direction_(direction), nested_(nested) {
         incident_ = mesh::incident_tets(m_);
         protect_ = [this](VertexId a, VertexId b) { return is_input_edge(a, b); };
         changed_at_.assign(m_.vertex_count(), 0);
@@ -375,7 +377,10 @@ private:
     bool search_edge_removal(TetId t, VertexId u, VertexId v, int depth) {
         --budget_;
         created_.clear();
-        if (shells_.size() <= static_cast<std::size_t>(depth)) shells_.resize(static_cast<std::size_t>(depth) + 1);
+        if (shells_.size() <= static_cast<std::size_t>(depth)) {
+            shells_.resize(static_cast<std::size_t>(depth) + 1);
+            orders_.resize(static_cast<std::size_t>(depth) + 1);
+        }
         mesh::Shell& around = shells_[static_cast<std::size_t>(depth)];  // one per nesting level, reused
         // One walk around uv: a failed removal leaves the mesh unchanged,
         // so the shell it was given is still the shell of uv below.
@@ -389,7 +394,17 @@ private:
             if (memo && r == FlipResult::kNoValidTriangulation) failed_rings_.insert(ring);
         }
         if (depth == 0) return false;
-        for (std::size_t i = 0; i < around.size(); ++i) {
+        // The ring vertices where the ring is not convex as seen from u
+        // and v first: no valid triangulation of the ring has their ear
+        // (NestedOrder).
+        std::vector<std::size_t>& order = orders_[static_cast<std::size_t>(depth)];
+        if (nested_ == NestedOrder::kBlockingFirst) {
+            mesh::ring_positions_blocking_first(m_, u, v, around, order);
+        } else {
+            order.resize(around.size());
+            std::iota(order.begin(), order.end(), std::size_t{0});
+        }
+        for (std::size_t i : order) {
             const VertexId r = around.ring[i];
             if (r == kGhostVertex) continue;
             for (VertexId end : {u, v}) {
@@ -406,6 +421,7 @@ private:
     const ConstraintFaces& faces_;
     const FlipMemo memo_;
     const FlipDirection direction_;
+    const NestedOrder nested_;
     Search search_ = kSearches[0];
     int budget_ = 0;
     std::vector<TetId> incident_;
@@ -425,6 +441,7 @@ private:
     std::vector<TetId> ball_, created_;
     mesh::Shell shell_;
     std::vector<mesh::Shell> shells_;
+    std::vector<std::vector<std::size_t>> orders_;  // per nesting level, as shells_: the ring positions to try
     std::vector<TetId> near_;
     std::unordered_set<TetId> seen_;
     std::vector<Crossing> crossings_;
@@ -440,8 +457,9 @@ private:
 
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo,
-                                          FlipRounds rounds, int deepest_budget, FlipDirection direction) {
-    FlipRecovery flips(m, faces, memo, direction);
+                                          FlipRounds rounds, int deepest_budget, FlipDirection direction,
+                                          NestedOrder nested) {
+    FlipRecovery flips(m, faces, memo, direction, nested);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
     // repeats while a pass makes progress, a few times, for the faces whose

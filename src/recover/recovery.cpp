@@ -117,13 +117,14 @@ bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, cons
 // star limit turned an unblocking point away.
 bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
                         const UnblockingOptions& unblocking_options, int face_orders, FlipDirection direction,
-                        RecoveryStats& stats, RecoveryResult& result, bool& star_refused) {
+                        NestedOrder nested, RecoveryStats& stats, RecoveryResult& result, bool& star_refused) {
     const UnblockingResult unblocking =
         insert_unblocking_points(m, faces, missing, result.steiner, unblocking_options);
     star_refused = unblocking.refused_for_star > 0;
     stats.steiner_generated += unblocking.kept;
     if (unblocking.kept > 0)
-        missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, FlipRounds::kWithoutDeepest, 0, direction);
+        missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, FlipRounds::kWithoutDeepest, 0, direction,
+                                   nested);
     // §6 before conforming recovery: the points that the recovered faces
     // do not need go (they are marked, so none is lost); near the faces
     // still missing, the points left would make thin tetrahedra for the
@@ -193,8 +194,8 @@ bool recover_after_flips(mesh::TetMesh& m, const ConstraintFaces& faces, std::ve
             flipped.restore(m, stats, result);
             missing = flips_left;
         }
-        if (unblock_then_split(m, faces, missing, attempt.options, options.face_orders, direction, stats, result,
-                               star_refused))
+        if (unblock_then_split(m, faces, missing, attempt.options, options.face_orders, direction,
+                               options.nested_order, stats, result, star_refused))
             return true;
         if (tried++ == 0) {
             first_failure = {stats, result.why};
@@ -234,7 +235,8 @@ std::vector<std::size_t> first_flips(mesh::TetMesh& m, const ConstraintFaces& fa
     const FlipRounds rounds = options.deep_flips ? FlipRounds::kAll : FlipRounds::kWithoutDeepest;
     direction = FlipDirection::kAsGiven;
     std::vector<std::size_t> left =
-        recover_by_flips(m, faces, missing, FlipMemo::kOn, rounds, options.deepest_flip_budget, direction);
+        recover_by_flips(m, faces, missing, FlipMemo::kOn, rounds, options.deepest_flip_budget, direction,
+                         options.nested_order);
     if (!delaunay_again || left.size() * kFlipRestartShare <= missing.size()) return left;
     mesh::TetMesh as_given = m;  // only here: copied before every flips, igea's recovery took 8% longer
     delaunay_again();
@@ -242,7 +244,8 @@ std::vector<std::size_t> first_flips(mesh::TetMesh& m, const ConstraintFaces& fa
     // the flips); the missing ones are the same.
     const std::vector<std::size_t> again = mark_present_faces(m, faces);
     std::vector<std::size_t> reversed = recover_by_flips(m, faces, again, FlipMemo::kOn, rounds,
-                                                         options.deepest_flip_budget, FlipDirection::kReversed);
+                                                         options.deepest_flip_budget, FlipDirection::kReversed,
+                                                         options.nested_order);
     if (reversed.size() < left.size()) {
         direction = FlipDirection::kReversed;
         return reversed;
