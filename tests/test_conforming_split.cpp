@@ -1300,14 +1300,17 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     // radius 10 and height 1, both caps fanned from one rim vertex, turned
     // in space (tests/bench/fan_cap_prism.py 96 10 1, rotate_surface.py
     // seed 22; seed 4 served until session 17, when it began to recover in
-    // the default flip state). With the deepest flip round's default budget, conforming
-    // recovery fails in every order of the faces and with unblocking points
-    // of any star; the flips with another budget leave a mesh from which it
-    // succeeds. cbr_mesh_recover_faces tries those budgets
-    // (kRetryFlipBudgets) after a failure, once the enclosing box has
-    // failed too (this prism recovers in the box already;
-    // test_capi_recover checks that order). If the default ever succeeds,
-    // this test no longer shows why the retry is there, and says so.
+    // the default flip state). In ring order with the deepest flip
+    // round's default budget, conforming recovery fails in every order of
+    // the faces and with unblocking points of any star; the flips with
+    // another budget leave a mesh from which it succeeds.
+    // cbr_mesh_recover_faces tries those budgets (kRetryFlipBudgets, in
+    // ring order) after a failure, once the enclosing box has failed too
+    // (test_capi_recover checks that order on another prism). Since
+    // session 33 the default order (the blocking ring vertices first)
+    // recovers it in the first attempt. If ring order with the default
+    // budget ever succeeds, this test no longer shows why the retry is
+    // there, and says so.
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r22.off", s));
     {
