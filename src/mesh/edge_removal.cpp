@@ -250,17 +250,18 @@ void ring_positions_blocking_first(const TetMesh& m, VertexId u, VertexId v, con
                                    std::vector<std::size_t>& order) {
     const std::size_t n = shell.size();
     order.resize(n);
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    if (n < 3) return;
+    if (n < 3) {  // no ear to judge
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        return;
+    }
     static const RingObjective signs_only;
     const RingScorer score(m, u, v, shell, thread_ring_dp().finite, signs_only);
     // The blocking positions from the front, the others from the back
     // (reversed, then turned back into ring order).
     std::size_t front = 0, back = n;
     for (std::size_t i = 0; i < n; ++i) {
-        const int at = static_cast<int>(i);
-        const bool ear = score.valid(static_cast<int>((i + n - 1) % n), at, static_cast<int>((i + 1) % n));
-        if (ear) order[--back] = i;
+        const int before = static_cast<int>((i + n - 1) % n), after = static_cast<int>((i + 1) % n);
+        if (score.valid(before, static_cast<int>(i), after)) order[--back] = i;
         else order[front++] = i;
     }
     std::reverse(order.begin() + static_cast<std::ptrdiff_t>(back), order.end());
