@@ -26,6 +26,11 @@ constexpr double kSliverThreshold = 0.1;
 // this many sweeps.
 constexpr double kDihedralFlipsBelow = 5.0;
 constexpr int kDihedralFlipSweeps = 8;
+// Rounds of points moved for the angle, each followed by those flips:
+// later rounds start where the earlier moves and flips left the balls
+// (on the 37 shared surfaces, 3 rounds instead of 1: 187 fewer
+// tetrahedra under q = 0.1; thingiverse-mouth 3.4 -> 3.9 deg).
+constexpr int kDihedralSmoothingRounds = 3;
 // Last, tetrahedra of four input points below this angle get a point
 // judged by the angle (rescue_small_angles). Each such point roughly
 // doubles the tetrahedra under q = 0.1 of its cavity (the flat patch caps
@@ -83,12 +88,15 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         // (everywhere: a pair of removals may reach past the moved
         // points' neighbours; thingiverse-chain-link keeps a flat
         // tetrahedron of input points at 1.5e-4 deg when the flips look
-        // only next to them).
-        const std::size_t moved =
-            options.dihedral_smoothing ? smooth_for_dihedrals(c, kDihedralFlipsBelow, kSliverThreshold) : 0;
-        stats.smoothed += moved;
-        stats.dihedral_moves += moved;
-        if (moved > 0) flips_for_angles();
+        // only next to them), and the flips open moves again, for at most
+        // kDihedralSmoothingRounds rounds.
+        for (int round = 0; round < kDihedralSmoothingRounds && options.dihedral_smoothing; ++round) {
+            const std::size_t moved = smooth_for_dihedrals(c, kDihedralFlipsBelow, kSliverThreshold);
+            stats.smoothed += moved;
+            stats.dihedral_moves += moved;
+            if (moved == 0) break;
+            flips_for_angles();
+        }
     }
     if (options.slivers) {
         const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold, stats);

@@ -27,9 +27,8 @@ std::size_t smooth_vertices(RefineContext& c);
 // each movable vertex whose ball has a tetrahedron with a dihedral angle
 // below `below_degrees` moves to where the ball's smallest dihedral angle
 // is larger, as long as the ball keeps its radius ratios (no more
-// tetrahedra under `keep_radius_ratio`, the worst at least the smaller of
-// that and the old worst, 90% of the mean); the same validity and size
-// rules as above. Returns the number of moves; `log`, for tests, gets
+// tetrahedra under `keep_radius_ratio`, 90% of the mean; the worst of
+// those under it may fall); the same validity and size rules as above. Returns the number of moves; `log`, for tests, gets
 // each move in order.
 struct VertexMove {
     mesh::VertexId v;
