@@ -731,6 +731,53 @@ TEST_CASE("refine: a point moved for the smallest dihedral angle keeps its ball'
     }
 }
 
+TEST_CASE("refine: later rounds of moves for the smallest angle try only the balls that changed, and move the same") {
+    // smooth_for_dihedrals with `since`: a ball with no tetrahedron created
+    // or reshaped in that pass or after it is skipped, since it failed in
+    // the round before and would fail again. Two identical refinements of
+    // the 48-gon coin (without these moves): the same first round in both;
+    // then a second round, filtered by the first round's pass in one and
+    // unfiltered in the other, makes the same moves; and a third round
+    // filtered by a pass in which nothing changed moves nothing, while
+    // the unfiltered one still finds moves (the filter has work to skip).
+    cbr::refine::RefineOptions without;
+    without.dihedral_smoothing = false;
+    RefinedAlone filtered, all;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, filtered);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, all);
+    const auto same_moves = [](const std::vector<cbr::refine::VertexMove>& a,
+                               const std::vector<cbr::refine::VertexMove>& b) {
+        if (a.size() != b.size()) return false;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            if (a[i].v != b[i].v || a[i].to != b[i].to) return false;
+        return true;
+    };
+    std::vector<cbr::refine::VertexMove> f1, a1, f2, a2, f3, a3;
+    filtered.c->start_pass();
+    all.c->start_pass();
+    const std::uint32_t first = filtered.c->pass();
+    cbr::refine::smooth_for_dihedrals(*filtered.c, 5.0, 0.1, &f1, 0);
+    cbr::refine::smooth_for_dihedrals(*all.c, 5.0, 0.1, &a1, 0);
+    REQUIRE(!f1.empty());
+    CHECK(same_moves(f1, a1));
+    filtered.c->start_pass();
+    all.c->start_pass();
+    cbr::refine::smooth_for_dihedrals(*filtered.c, 5.0, 0.1, &f2, first);
+    cbr::refine::smooth_for_dihedrals(*all.c, 5.0, 0.1, &a2, 0);
+    MESSAGE("moves per round: " << f1.size() << ", " << f2.size());
+    CHECK(!a2.empty());
+    CHECK(same_moves(f2, a2));
+    filtered.c->start_pass();
+    all.c->start_pass();
+    const std::uint32_t third = filtered.c->pass();
+    cbr::refine::smooth_for_dihedrals(*filtered.c, 5.0, 0.1, &f3, third);
+    cbr::refine::smooth_for_dihedrals(*all.c, 5.0, 0.1, &a3, 0);
+    MESSAGE("third round, unfiltered: " << a3.size() << " moves");
+    CHECK(f3.empty());
+    CHECK(!a3.empty());
+    REQUIRE(cbr::mesh::check_mesh(filtered.r.d.mesh()).ok());
+}
+
 TEST_CASE("refine: points moved for the smallest dihedral angle lift it where flips cannot") {
     // thingicsg-sprocket-small: a field point between the fanned caps of a
     // thin disc, placed for its worst radius ratio, leaves 3.45 deg at the

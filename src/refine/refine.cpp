@@ -90,8 +90,12 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         // tetrahedron of input points at 1.5e-4 deg when the flips look
         // only next to them), and the flips open moves again, for at most
         // kDihedralSmoothingRounds rounds.
+        std::uint32_t since = 0;  // the first round tries every ball; the later ones those changed since
         for (int round = 0; round < kDihedralSmoothingRounds && options.dihedral_smoothing; ++round) {
-            const std::size_t moved = smooth_for_dihedrals(c, kDihedralFlipsBelow, kSliverThreshold);
+            c.start_pass();
+            const std::uint32_t now = c.pass();
+            const std::size_t moved = smooth_for_dihedrals(c, kDihedralFlipsBelow, kSliverThreshold, nullptr, since);
+            since = now;
             stats.smoothed += moved;
             stats.dihedral_moves += moved;
             if (moved == 0) break;

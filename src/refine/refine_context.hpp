@@ -70,6 +70,10 @@ public:
     bool changed(mesh::TetId t) const { return (t < stamp_.size() ? stamp_[t] : 0) + 1 >= pass_; }
     // t or a tetrahedron across one of its faces changed.
     bool changed_near(mesh::TetId t) const;
+    // The current pass, and whether t was created or reshaped in that pass
+    // or after it.
+    std::uint32_t pass() const { return pass_; }
+    bool changed_since(mesh::TetId t, std::uint32_t pass) const { return (t < stamp_.size() ? stamp_[t] : 0) >= pass; }
 
     // Registers a point appended to m (value of the sizing field there).
     void add_vertex(double h) { size.add(h); }

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geom/predicates.hpp"
@@ -40,7 +41,8 @@ class Smoother {
 public:
     explicit Smoother(RefineContext& c) : c_(c), m_(c.m) {}
     bool smooth(VertexId v, TetId start);
-    bool raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio);
+    bool raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio,
+                              std::uint32_t since);
 
 private:
     // The ball at v's current position, as raise_smallest_angle judges it.
@@ -50,7 +52,7 @@ private:
         double sum_q = 0;
         std::size_t under = 0;  // tetrahedra with radius ratio under the bound kept
     };
-    BallAngles rate_angles(double keep_radius_ratio) const;
+    BallAngles rate_angles(double keep_radius_ratio, double to_beat = -1) const;
     bool collect_link(VertexId v);
     double min_quality(double floor) const;
     double sum_quality(double floor, double to_beat) const;
@@ -62,6 +64,8 @@ private:
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
     std::vector<double> qualities_;  // of ball_ at the vertex's position, in ball_'s order
+    mutable std::vector<double> angle_scratch_;  // rate_angles: radius ratios of ball_, in its order
+    mutable std::size_t smallest_at_ = 0;       // rate_angles: where ball_'s smallest angle was last
     mesh::SlotMarks seen_;  // per vertex: kSeen when already in neighbours_
     static constexpr std::uint8_t kSeen = 1;
 };
@@ -255,9 +259,17 @@ bool Smoother::smooth(VertexId v, TetId start) {
     return best != nullptr;
 }
 
-Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio) const {
+// The ball's radius ratios first, then its smallest dihedral angle, where
+// only a tetrahedron whose radius ratio is under the bound of the smallest
+// angle so far (radius_ratio_bound_for_dihedral: a tetrahedron above it
+// has no smaller angle) is measured: a few per ball instead of all (the
+// angles' arctangents were half of thingiverse-chain-link's mesh
+// generation). Stops at an angle at or below `to_beat`: the caller
+// refuses the position then.
+Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_beat) const {
     BallAngles r;
-    double smallest = 180;
+    angle_scratch_.resize(ball_.size());
+    std::size_t i = 0;
     for (TetId t : ball_) {
         const VertexId* w = m_.vertices(t);
         const double* a = m_.point(w[0]);
@@ -265,12 +277,32 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio) const {
         const double* c = m_.point(w[2]);
         const double* d = m_.point(w[3]);
         if (geom::orient3d(a, b, c, d) <= 0) return r;
-        smallest = std::min(smallest, min_dihedral(a, b, c, d));
         const double q = radius_ratio(a, b, c, d);
+        angle_scratch_[i++] = q;
         r.worst_q = std::min(r.worst_q, q);
         r.sum_q += q;
         r.under += q < keep_radius_ratio;
     }
+    // The tetrahedron of the smallest angle at the previous position first:
+    // after a small move it mostly still is, and its bound then skips
+    // most of the others (or its angle ends the rating).
+    double smallest = 180;
+    double q_bound = std::numeric_limits<double>::infinity();
+    const auto measure = [&](std::size_t k) {
+        // The margin keeps a tetrahedron whose bound ties within rounding.
+        if (angle_scratch_[k] * (1 - 1e-9) >= q_bound) return false;
+        const VertexId* w = m_.vertices(ball_[k]);
+        const double angle = min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
+        if (angle >= smallest) return false;
+        smallest = angle;
+        smallest_at_ = k;
+        q_bound = radius_ratio_bound_for_dihedral(smallest);
+        return smallest <= to_beat;
+    };
+    const std::size_t first = smallest_at_ < ball_.size() ? smallest_at_ : 0;
+    if (!measure(first))
+        for (std::size_t k = 0; k < ball_.size(); ++k)
+            if (k != first && measure(k)) break;
     r.smallest = smallest;
     return r;
 }
@@ -292,8 +324,10 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio) const {
 // tetrahedra under q = 0.1 from 29 to 2, or common3d-rocker-arm's from
 // 2.8 deg to 5.3. The ball stays valid (exact) and within the size bound;
 // the move is kept when the angle rises by kAngleGain.
-bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio) {
+bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio,
+                                    std::uint32_t since) {
     if (!mesh::ball(m_, v, start, ball_)) return false;
+    if (std::none_of(ball_.begin(), ball_.end(), [&](TetId t) { return c_.changed_since(t, since); })) return false;
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
     const bool wanted = std::any_of(ball_.begin(), ball_.end(),
                                     [&](TetId t) { return has_dihedral_below(m_, t, below_degrees, q_bound); });
@@ -311,7 +345,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     double angle = old.smallest;
     compass_search(p, angle, step, kAngleHalvings, [&](const Point& trial, double to_beat) {
         m_.set_point(v, trial.data());
-        const BallAngles r = rate_angles(keep_radius_ratio);
+        const BallAngles r = rate_angles(keep_radius_ratio, to_beat);
         return acceptable(r, to_beat) ? r.smallest : -1.0;
         },
         Stencil::kCube);
@@ -325,7 +359,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
 }  // namespace
 
 std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                 std::vector<VertexMove>* log) {
+                                 std::vector<VertexMove>* log, std::uint32_t since) {
     // The vertices of the tetrahedra under the angle first (the radius
     // ratio's bound before the angle, as the flips do): most balls have
     // none, and rating every ball was 2% of homer's mesh generation.
@@ -341,7 +375,7 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
         if (!near_small_angle[v] || !c.is_movable(v) || c.is_surface_vertex(v) || incident[v] == mesh::kNoTet)
             continue;
         const Point from = {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]};
-        if (!s.raise_smallest_angle(v, incident[v], below_degrees, keep_radius_ratio)) continue;
+        if (!s.raise_smallest_angle(v, incident[v], below_degrees, keep_radius_ratio, since)) continue;
         ++moved;
         if (log) log->push_back({v, from, {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]}});
     }

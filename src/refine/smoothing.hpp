@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "refine/refine_context.hpp"
@@ -35,6 +36,6 @@ struct VertexMove {
     Point from, to;
 };
 std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                 std::vector<VertexMove>* log = nullptr);
+                                 std::vector<VertexMove>* log = nullptr, std::uint32_t since = 0);
 
 }  // namespace cbr::refine
