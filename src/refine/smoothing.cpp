@@ -268,6 +268,20 @@ bool Smoother::smooth(VertexId v, TetId start) {
 // refuses the position then.
 Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_beat) const {
     BallAngles r;
+    const auto angle_of = [&](std::size_t k) {
+        const VertexId* w = m_.vertices(ball_[k]);
+        return min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
+    };
+    // Most positions a search tries are refused, mostly by the angle of
+    // the tetrahedron that held the smallest one before: that angle
+    // alone refuses them, before any radius ratio.
+    if (smallest_at_ < ball_.size()) {
+        const double angle = angle_of(smallest_at_);
+        if (angle <= to_beat) {
+            r.smallest = angle;
+            return r;
+        }
+    }
     angle_scratch_.resize(ball_.size());
     std::size_t i = 0;
     for (TetId t : ball_) {
@@ -291,8 +305,7 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
     const auto measure = [&](std::size_t k) {
         // The margin keeps a tetrahedron whose bound ties within rounding.
         if (angle_scratch_[k] * (1 - 1e-9) >= q_bound) return false;
-        const VertexId* w = m_.vertices(ball_[k]);
-        const double angle = min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
+        const double angle = angle_of(k);
         if (angle >= smallest) return false;
         smallest = angle;
         smallest_at_ = k;
