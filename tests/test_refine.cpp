@@ -434,6 +434,54 @@ double worst_of(const cbr::mesh::TetMesh& m, const std::vector<Corners>& tets, M
 const Measure kAngle = cbr::refine::min_dihedral;
 const Measure kRatio = cbr::refine::radius_ratio;
 
+TEST_CASE("refine: min_dihedral is the smallest of the six angles, bit for bit") {
+    // min_dihedral picks the smallest angle by signs and takes one
+    // arctangent; dihedral_range takes all six. The same
+    // double on random tetrahedra flattened toward a face or squashed
+    // along z (slivers, caps, needles: angles down to 1e-10 deg), on the
+    // regular tetrahedron (six equal angles) and on ones with repeated or
+    // collinear corners (zero angles).
+    std::uint64_t x = 777;
+    const auto next = [&x] {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(x >> 11) / 9007199254740992.0;  // [0, 1)
+    };
+    const auto same = [](const double (&p)[4][3]) {
+        double lo = -1, hi = -1;
+        cbr::refine::dihedral_range(p[0], p[1], p[2], p[3], lo, hi);
+        const double smallest = cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]);
+        return smallest == lo;
+    };
+    std::size_t differ = 0;
+    double tiniest = 180;
+    for (int it = 0; it < 60000; ++it) {
+        double p[4][3];
+        for (auto& c : p)
+            for (double& v : c) v = next();
+        const double s = std::pow(10.0, -12 * next());
+        if (it % 3 == 1)  // d toward the centroid of abc
+            for (int k = 0; k < 3; ++k) {
+                const double g = (p[0][k] + p[1][k] + p[2][k]) / 3;
+                p[3][k] = g + s * (p[3][k] - g);
+            }
+        if (it % 3 == 2)
+            for (auto& c : p) c[2] *= s;
+        differ += !same(p);
+        tiniest = std::min(tiniest, cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]));
+    }
+    const double r = 1 / std::sqrt(2.0);
+    const double regular[4][3] = {{1, 0, -r}, {-1, 0, -r}, {0, 1, r}, {0, -1, r}};
+    const double repeated[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 1, 1}};
+    const double collinear[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+    CHECK(same(regular));
+    CHECK(cbr::refine::min_dihedral(regular[0], regular[1], regular[2], regular[3]) == doctest::Approx(70.5288));
+    CHECK(same(repeated));
+    CHECK(same(collinear));
+    MESSAGE("smallest angle seen " << tiniest << " deg; differing " << differ);
+    CHECK(tiniest < 1e-9);
+    CHECK(differ == 0);
+}
+
 TEST_CASE("refine: a dihedral angle below a bound caps the radius ratio") {
     // improve_dihedrals_by_flips skips a tetrahedron by its radius ratio
     // when that is at least radius_ratio_bound_for_dihedral(angle): the
