@@ -656,16 +656,17 @@ TEST_CASE("refine: an edge removal after another where no ring triangulation was
         CHECK(on.quality.dihedral_min_deg >= off.quality.dihedral_min_deg);
         CHECK(bad_tets(on) < bad_tets(off));
     }
-    SUBCASE("wildmeshing-supershape") {
-        // A flat tetrahedron of four input points (1.0 deg after the
-        // deepest-point rescue) that the pairs remove first: 5.16 deg
-        // (TetGen -pYq1.414: 0.12).
+    SUBCASE("wildmeshing-blub") {
+        // Measured: 7 pairs, smallest angle 2.25 -> 2.42 deg, tetrahedra
+        // under q = 0.1 107 -> 99. (wildmeshing-supershape showed it until
+        // the rings of sliver removal stopped at reach 4: its flat
+        // tetrahedron of four input points no longer arises.)
         Outcome off, on;
-        if (!refine_shared_off_on("wildmeshing-supershape", without, {}, 0.6, true, off, on)) return;
+        if (!refine_shared_off_on("wildmeshing-blub", without, {}, 0.6, false, off, on)) return;
         MESSAGE("smallest dihedral angle " << off.quality.dihedral_min_deg << " -> " << on.quality.dihedral_min_deg);
         CHECK(on.stats.removal_pairs > 0);
-        CHECK(on.quality.dihedral_min_deg > 4);
-        CHECK(bad_tets(on) <= bad_tets(off));
+        CHECK(on.quality.dihedral_min_deg > off.quality.dihedral_min_deg);
+        CHECK(bad_tets(on) < bad_tets(off));
     }
 }
 

@@ -17,7 +17,7 @@
 // only small cavity with room for a well-shaped star): there the best
 // candidate is climbed by a pattern search and counts only when its star
 // has no sliver left. Else the sliver and its neighbours across
-// non-constraint faces, one ring after another up to six, all in one
+// non-constraint faces, one ring after another up to four, all in one
 // region (the smallest that admits a valid star, beating the cavity's
 // worst tetrahedron by kSliverGain). When no ring has one and the
 // sliver's corners are four input points (nothing can move them), a
