@@ -35,7 +35,8 @@ void compass_search(Point& p, double& value, double step, int halvings, Rate rat
         };
         if (stencil == Stencil::kAxes) {
             for (int axis = 0; axis < 3; ++axis)
-                for (int sign : {-1, 1}) try_step(axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0, step);
+                for (int sign : {-1, 1})
+                    try_step(axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0, step);
         } else {
             for (int dx = -1; dx <= 1; ++dx)
                 for (int dy = -1; dy <= 1; ++dy)

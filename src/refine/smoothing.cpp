@@ -356,12 +356,12 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     step /= 4 * static_cast<double>(neighbours_.size());
     Point p = here;
     double angle = old.smallest;
-    compass_search(p, angle, step, kAngleHalvings, [&](const Point& trial, double to_beat) {
+    const auto rate = [&](const Point& trial, double to_beat) {
         m_.set_point(v, trial.data());
         const BallAngles r = rate_angles(keep_radius_ratio, to_beat);
         return acceptable(r, to_beat) ? r.smallest : -1.0;
-        },
-        Stencil::kCube);
+    };
+    compass_search(p, angle, step, kAngleHalvings, rate, Stencil::kCube);
     const bool moved = angle > old.smallest * kAngleGain;
     m_.set_point(v, moved ? p.data() : here.data());
     if (moved)

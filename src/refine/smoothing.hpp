@@ -29,8 +29,11 @@ std::size_t smooth_vertices(RefineContext& c);
 // below `below_degrees` moves to where the ball's smallest dihedral angle
 // is larger, as long as the ball keeps its radius ratios (no more
 // tetrahedra under `keep_radius_ratio`, 90% of the mean; the worst of
-// those under it may fall); the same validity and size rules as above. Returns the number of moves; `log`, for tests, gets
-// each move in order.
+// those under it may fall); the same validity and size rules as above.
+// Only balls with a tetrahedron created or reshaped in pass `since` or
+// after it (RefineContext::changed_since) are tried: the others failed in
+// an earlier call and would fail again. Returns the number of moves;
+// `log`, for tests, gets each move in order.
 struct VertexMove {
     mesh::VertexId v;
     Point from, to;
