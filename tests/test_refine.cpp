@@ -891,6 +891,72 @@ TEST_CASE("refine: a point for a small angle beats its cavity's angle and keeps 
     check_points(Surface{surface.xyz, surface.tris});
 }
 
+TEST_CASE("refine: a point for a small angle is climbed to where no last step raises its star's angle") {
+    // rescue_angle climbs the best candidate of a shell of the sliver's
+    // widest edges by compass_search: steps along the axes of a quarter
+    // of the sliver's mean edge length, halved 5 times, so it ends where
+    // no axis step of a sixteenth of that raises the smallest dihedral
+    // angle of the star (or makes it invalid). From the log: the sliver is
+    // the first tetrahedron replaced (the shell starts there), the point
+    // is the corner all made tetrahedra share. When the star's rating
+    // was capped at 1 degree (its minimum started at 1, the radius
+    // ratio's largest value), the climb never moved from a candidate
+    // that reached 1 degree, and such a step still raised it. Chain link
+    // refined without these points, below 5 deg.
+    cbr::refine::RefineOptions without;
+    without.angle_rescue = false;
+    cbr::test::OffSurface surface;
+    if (!shared_surface("thingiverse-chain-link", surface)) return;
+    RefinedAlone refined;
+    refine_then_context(Surface{surface.xyz, surface.tris}, without, refined);
+    const cbr::mesh::TetMesh& m = refined.r.d.mesh();
+    cbr::refine::RefineStats stats;
+    std::vector<cbr::refine::TetChange> log;
+    cbr::refine::rescue_small_angles(*refined.c, 5.0, 0.1, stats, &log);
+    REQUIRE(cbr::mesh::check_mesh(m).ok());
+    std::size_t checked = 0, above_one = 0, raised = 0;
+    for (const cbr::refine::TetChange& change : log) {
+        REQUIRE(!change.made.empty());
+        VertexId point = change.made[0][0];
+        for (VertexId v : change.made[0])
+            if (std::all_of(change.made.begin(), change.made.end(),
+                            [&](const Corners& t) { return std::count(t.begin(), t.end(), v) == 1; }))
+                point = v;
+        const auto star_angle = [&](const cbr::refine::Point& x) {
+            double smallest = 180;
+            for (const Corners& t : change.made) {
+                const double* p[4];
+                for (int i = 0; i < 4; ++i) p[i] = t[i] == point ? x.data() : m.point(t[i]);
+                if (cbr::geom::orient3d(p[0], p[1], p[2], p[3]) <= 0) return -1.0;
+                smallest = std::min(smallest, cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]));
+            }
+            return smallest;
+        };
+        const Corners& sliver = change.replaced[0];
+        double step = 0;
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j)
+                step += std::sqrt(cbr::refine::squared_distance(m.point(sliver[i]), m.point(sliver[j])));
+        step /= 6 * 4 * 16;
+        const cbr::refine::Point at = {m.point(point)[0], m.point(point)[1], m.point(point)[2]};
+        const double here = star_angle(at);
+        ++checked;
+        above_one += here > 1;
+        bool rises = false;
+        for (int axis = 0; axis < 3; ++axis)
+            for (double sign : {-1.0, 1.0}) {
+                cbr::refine::Point x = at;
+                x[axis] += sign * step;
+                rises = rises || star_angle(x) > here * (1 + 1e-12);
+            }
+        raised += rises;
+    }
+    MESSAGE("points " << checked << ", star above 1 deg " << above_one << ", a last step raises " << raised);
+    CHECK(checked > 0);
+    CHECK(above_one > 0);
+    CHECK(raised == 0);
+}
+
 TEST_CASE("refine: a point for a small angle lifts the golf ball's minimum above TetGen's") {
     // thingiverse-golf-ball keeps a flat tetrahedron of four input points
     // in a nearly flat patch of its surface (0.17 deg) that the radius

@@ -182,8 +182,9 @@ bool SliverRemover::no_star_beats(double bar) const {
     });
 }
 
-// The worst radius ratio of the star of p over the cavity's boundary; -1
-// when a boundary face does not see p strictly (exact). Stops early with
+// The worst measure (radius ratio, or smallest dihedral angle) of the
+// star of p over the cavity's boundary; -1 when a boundary face does not
+// see p strictly (exact). Stops early with
 // some value at most `floor` once the star is known to be no better than
 // that (the caller wants only stars above it). Every face is tested for
 // sight before any is rated: most candidates have no valid star (chain
@@ -202,7 +203,11 @@ double SliverRemover::star_quality(const double* p, double floor) const {
             blocker_ = i;
             return -1;
         }
-    double worst = 1;
+    // Above the measure's largest value (1; the regular tetrahedron's
+    // angles, 70.5 degrees), so the first face sets it. (A start at 1 for
+    // the angle too capped every star at 1 degree, and the climb of
+    // rescue_angle stopped at the first candidate to reach it.)
+    double worst = by_radius_ratio() ? 1 : 180;
     for (const BoundaryFace& f : boundary_) {
         worst = std::min(worst, measure_(f.corners[0], f.corners[1], f.corners[2], p));
         if (worst <= floor) return worst;
