@@ -434,6 +434,35 @@ double worst_of(const cbr::mesh::TetMesh& m, const std::vector<Corners>& tets, M
 const Measure kAngle = cbr::refine::min_dihedral;
 const Measure kRatio = cbr::refine::radius_ratio;
 
+// Random tetrahedra from a fixed sequence (a linear congruential
+// generator seeded by `seed`): every third one as drawn from the unit
+// cube, every third with d moved toward the centroid of abc, every third
+// squashed along z, both by a factor 10^(-decades * uniform): slivers,
+// caps, needles.
+class RandomTets {
+public:
+    explicit RandomTets(std::uint64_t seed) : x_(seed) {}
+    void next(int it, double decades, double (&p)[4][3]) {
+        for (auto& c : p)
+            for (double& v : c) v = uniform();
+        const double s = std::pow(10.0, -decades * uniform());
+        if (it % 3 == 1)  // d toward the centroid of abc
+            for (int k = 0; k < 3; ++k) {
+                const double g = (p[0][k] + p[1][k] + p[2][k]) / 3;
+                p[3][k] = g + s * (p[3][k] - g);
+            }
+        if (it % 3 == 2)
+            for (auto& c : p) c[2] *= s;
+    }
+
+private:
+    double uniform() {
+        x_ = x_ * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(x_ >> 11) / 9007199254740992.0;  // [0, 1)
+    }
+    std::uint64_t x_;
+};
+
 TEST_CASE("refine: min_dihedral is the smallest of the six angles, bit for bit") {
     // min_dihedral picks the smallest angle by signs and takes one
     // arctangent; dihedral_range takes all six. The same
@@ -441,11 +470,7 @@ TEST_CASE("refine: min_dihedral is the smallest of the six angles, bit for bit")
     // along z (slivers, caps, needles: angles down to 1e-10 deg), on the
     // regular tetrahedron (six equal angles) and on ones with repeated or
     // collinear corners (zero angles).
-    std::uint64_t x = 777;
-    const auto next = [&x] {
-        x = x * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<double>(x >> 11) / 9007199254740992.0;  // [0, 1)
-    };
+    RandomTets tets(777);
     const auto same = [](const double (&p)[4][3]) {
         double lo = -1, hi = -1;
         cbr::refine::dihedral_range(p[0], p[1], p[2], p[3], lo, hi);
@@ -456,16 +481,7 @@ TEST_CASE("refine: min_dihedral is the smallest of the six angles, bit for bit")
     double tiniest = 180;
     for (int it = 0; it < 60000; ++it) {
         double p[4][3];
-        for (auto& c : p)
-            for (double& v : c) v = next();
-        const double s = std::pow(10.0, -12 * next());
-        if (it % 3 == 1)  // d toward the centroid of abc
-            for (int k = 0; k < 3; ++k) {
-                const double g = (p[0][k] + p[1][k] + p[2][k]) / 3;
-                p[3][k] = g + s * (p[3][k] - g);
-            }
-        if (it % 3 == 2)
-            for (auto& c : p) c[2] *= s;
+        tets.next(it, 12, p);
         differ += !same(p);
         tiniest = std::min(tiniest, cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]));
     }
@@ -489,24 +505,11 @@ TEST_CASE("refine: a dihedral angle below a bound caps the radius ratio") {
     // a face or squashed along z (slivers, caps, needles), from a fixed
     // sequence. The largest q / sin(angle / 2) seen here is about 4.8
     // (flat slivers), so a bound of 4 sin(angle / 2) would fail.
-    std::uint64_t x = 12345;
-    const auto next = [&x] {
-        x = x * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<double>(x >> 11) / 9007199254740992.0;  // [0, 1)
-    };
+    RandomTets tets(12345);
     double largest = 0;
     for (int it = 0; it < 30000; ++it) {
         double p[4][3];
-        for (auto& c : p)
-            for (double& v : c) v = next();
-        const double s = std::pow(10.0, -6 * next());
-        if (it % 3 == 1)  // d toward the centroid of abc
-            for (int k = 0; k < 3; ++k) {
-                const double g = (p[0][k] + p[1][k] + p[2][k]) / 3;
-                p[3][k] = g + s * (p[3][k] - g);
-            }
-        if (it % 3 == 2)
-            for (auto& c : p) c[2] *= s;
+        tets.next(it, 6, p);
         const double q = cbr::refine::radius_ratio(p[0], p[1], p[2], p[3]);
         const double angle = cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]);
         if (!(angle > 0)) continue;
