@@ -52,7 +52,7 @@ private:
         double sum_q = 0;
         std::size_t under = 0;  // tetrahedra with radius ratio under the bound kept
     };
-    BallAngles rate_angles(double keep_radius_ratio, double to_beat = -1) const;
+    BallAngles rate_angles(double keep_radius_ratio, double to_beat = -1);
     bool collect_link(VertexId v);
     double min_quality(double floor) const;
     double sum_quality(double floor, double to_beat) const;
@@ -63,9 +63,8 @@ private:
     mesh::TetMesh& m_;
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
-    std::vector<double> qualities_;  // of ball_ at the vertex's position, in ball_'s order
-    mutable std::vector<double> angle_scratch_;  // rate_angles: radius ratios of ball_, in its order
-    mutable std::size_t smallest_at_ = 0;       // rate_angles: where ball_'s smallest angle was last
+    std::vector<double> qualities_;  // radius ratios of ball_ at the vertex's position, in ball_'s order
+    std::size_t smallest_at_ = 0;    // rate_angles: where ball_'s smallest angle was last
     mesh::SlotMarks seen_;  // per vertex: kSeen when already in neighbours_
     static constexpr std::uint8_t kSeen = 1;
 };
@@ -266,24 +265,23 @@ bool Smoother::smooth(VertexId v, TetId start) {
 // angles' arctangents were half of thingiverse-chain-link's mesh
 // generation). Stops at an angle at or below `to_beat`: the caller
 // refuses the position then.
-Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_beat) const {
+Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_beat) {
     BallAngles r;
     const auto angle_of = [&](std::size_t k) {
         const VertexId* w = m_.vertices(ball_[k]);
         return min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
     };
-    // Most positions a search tries are refused, mostly by the angle of
-    // the tetrahedron that held the smallest one before: that angle
-    // alone refuses them, before any radius ratio.
-    if (smallest_at_ < ball_.size()) {
-        const double angle = angle_of(smallest_at_);
-        if (angle <= to_beat) {
-            r.smallest = angle;
-            return r;
-        }
+    // The tetrahedron of the smallest angle at the previous position
+    // first: after a small move it mostly still is. Most positions a
+    // search tries are refused, mostly by that angle alone, before any
+    // radius ratio; else its bound skips most of the others.
+    const std::size_t first = smallest_at_ < ball_.size() ? smallest_at_ : 0;
+    const double first_angle = angle_of(first);
+    if (first_angle <= to_beat) {
+        r.smallest = first_angle;
+        return r;
     }
-    angle_scratch_.resize(ball_.size());
-    std::size_t i = 0;
+    qualities_.clear();
     for (TetId t : ball_) {
         const VertexId* w = m_.vertices(t);
         const double* a = m_.point(w[0]);
@@ -292,30 +290,23 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
         const double* d = m_.point(w[3]);
         if (geom::orient3d(a, b, c, d) <= 0) return r;
         const double q = radius_ratio(a, b, c, d);
-        angle_scratch_[i++] = q;
+        qualities_.push_back(q);
         r.worst_q = std::min(r.worst_q, q);
         r.sum_q += q;
         r.under += q < keep_radius_ratio;
     }
-    // The tetrahedron of the smallest angle at the previous position first:
-    // after a small move it mostly still is, and its bound then skips
-    // most of the others (or its angle ends the rating).
-    double smallest = 180;
-    double q_bound = std::numeric_limits<double>::infinity();
-    const auto measure = [&](std::size_t k) {
+    double smallest = first_angle;
+    smallest_at_ = first;
+    double q_bound = radius_ratio_bound_for_dihedral(smallest);
+    for (std::size_t k = 0; k < ball_.size() && smallest > to_beat; ++k) {
         // The margin keeps a tetrahedron whose bound ties within rounding.
-        if (angle_scratch_[k] * (1 - 1e-9) >= q_bound) return false;
+        if (k == first || qualities_[k] * (1 - 1e-9) >= q_bound) continue;
         const double angle = angle_of(k);
-        if (angle >= smallest) return false;
+        if (angle >= smallest) continue;
         smallest = angle;
         smallest_at_ = k;
         q_bound = radius_ratio_bound_for_dihedral(smallest);
-        return smallest <= to_beat;
-    };
-    const std::size_t first = smallest_at_ < ball_.size() ? smallest_at_ : 0;
-    if (!measure(first))
-        for (std::size_t k = 0; k < ball_.size(); ++k)
-            if (k != first && measure(k)) break;
+    }
     r.smallest = smallest;
     return r;
 }

@@ -81,6 +81,26 @@ double oriented_radius_ratio(const double* a, const double* b, const double* c, 
     return radius_ratio(a, b, c, d);
 }
 
+namespace {
+
+// The dihedral angle at each edge of kTetEdges as a pair (sine, cosine),
+// both times one positive factor, from the unit edges at a (unit_edges):
+// the angle is atan2(sine, cosine).
+void dihedral_pairs(const V& u, const V& v, const V& w, std::array<double, 6>& sine,
+                    std::array<double, 6>& cosine) {
+    const V p[4] = {V{0, 0, 0}, u, v, w};
+    for (std::size_t i = 0; i < 6; ++i) {
+        const auto& e = kTetEdges[i];
+        const auto at = [&](int k) { return p[e[static_cast<std::size_t>(k)]]; };
+        const V axis = sub(at(1), at(0));
+        const V n1 = cross(axis, sub(at(2), at(0))), n2 = cross(axis, sub(at(3), at(0)));
+        sine[i] = len(cross(n1, n2));
+        cosine[i] = dot(n1, n2);
+    }
+}
+
+}  // namespace
+
 bool dihedral_angles(const double* a, const double* b, const double* c, const double* d,
                      std::array<double, 6>& deg) {
     V u, v, w;
@@ -88,14 +108,9 @@ bool dihedral_angles(const double* a, const double* b, const double* c, const do
         deg.fill(0);
         return false;
     }
-    const V p[4] = {V{0, 0, 0}, u, v, w};
-    for (std::size_t i = 0; i < 6; ++i) {
-        const auto& e = kTetEdges[i];
-        const auto at = [&](int k) { return p[e[static_cast<std::size_t>(k)]]; };
-        const V axis = sub(at(1), at(0));
-        const V n1 = cross(axis, sub(at(2), at(0))), n2 = cross(axis, sub(at(3), at(0)));
-        deg[i] = std::atan2(len(cross(n1, n2)), dot(n1, n2)) * (180 / kPi);
-    }
+    std::array<double, 6> sine, cosine;
+    dihedral_pairs(u, v, w, sine, cosine);
+    for (std::size_t i = 0; i < 6; ++i) deg[i] = std::atan2(sine[i], cosine[i]) * (180 / kPi);
     return true;
 }
 
@@ -121,16 +136,8 @@ void dihedral_range(const double* a, const double* b, const double* c, const dou
 double min_dihedral(const double* a, const double* b, const double* c, const double* d) {
     V u, v, w;
     if (!unit_edges(a, b, c, d, u, v, w)) return 0;
-    const V p[4] = {V{0, 0, 0}, u, v, w};
     std::array<double, 6> sine, cosine;
-    for (std::size_t i = 0; i < 6; ++i) {
-        const auto& e = kTetEdges[i];
-        const auto at = [&](int k) { return p[e[static_cast<std::size_t>(k)]]; };
-        const V axis = sub(at(1), at(0));
-        const V n1 = cross(axis, sub(at(2), at(0))), n2 = cross(axis, sub(at(3), at(0)));
-        sine[i] = len(cross(n1, n2));
-        cosine[i] = dot(n1, n2);
-    }
+    dihedral_pairs(u, v, w, sine, cosine);
     std::size_t best = 0;
     for (std::size_t i = 1; i < 6; ++i)
         if (sine[i] * cosine[best] - cosine[i] * sine[best] < 0) best = i;
