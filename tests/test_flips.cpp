@@ -1154,6 +1154,26 @@ TEST_CASE("ball, shell and incident_tets agree with brute-force scans") {
     }
 }
 
+TEST_CASE("VertexBalls lists each vertex's ball as ball() finds it, by slot") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(200, 43));
+    random_flips(m, 1500, 47);  // free slots and scattered ones
+    const double far[3] = {10, 10, 10};
+    const VertexId unused = m.add_points(far, 1);  // in no tetrahedron
+    const VertexBalls balls(m);
+    const std::vector<TetId> inc = incident_tets(m);
+    std::vector<TetId> listed, walked;
+    for (VertexId v = 0; v < unused; ++v) {
+        REQUIRE(ball(m, v, inc[v], walked));
+        std::sort(walked.begin(), walked.end());
+        balls.get(v, listed);
+        CHECK(listed == walked);  // ghosts included, ascending
+        CHECK_FALSE(balls.empty(v));
+    }
+    CHECK(balls.empty(unused));
+    balls.get(unused, listed);
+    CHECK(listed.empty());
+}
+
 // The order in which the free list hands out slots (then new ones).
 std::vector<TetId> allocation_order(TetMesh m) {
     std::vector<TetId> order;

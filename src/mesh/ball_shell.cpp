@@ -173,4 +173,22 @@ std::vector<TetId> incident_tets(const TetMesh& m) {
     return inc;
 }
 
+VertexBalls::VertexBalls(const TetMesh& m) : offsets_(m.vertex_count() + 1, 0) {
+    const auto finite_corners = [&](TetId t) { return m.is_ghost(t) ? 3 : 4; };
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t))
+            for (int i = 0; i < finite_corners(t); ++i) ++offsets_[m.vertex(t, i) + 1];
+    for (std::size_t v = 0; v + 1 < offsets_.size(); ++v) offsets_[v + 1] += offsets_[v];
+    tets_.resize(offsets_.back());
+    std::vector<std::size_t> fill(offsets_.begin(), offsets_.end() - 1);
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (!m.is_free(t))
+            for (int i = 0; i < finite_corners(t); ++i) tets_[fill[m.vertex(t, i)]++] = t;
+}
+
+void VertexBalls::get(VertexId v, std::vector<TetId>& out) const {
+    out.assign(tets_.begin() + static_cast<std::ptrdiff_t>(offsets_[v]),
+               tets_.begin() + static_cast<std::ptrdiff_t>(offsets_[v + 1]));
+}
+
 }  // namespace cbr::mesh

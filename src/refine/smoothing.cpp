@@ -40,7 +40,7 @@ constexpr int kAngleHalvings = 8;
 class Smoother {
 public:
     explicit Smoother(RefineContext& c) : c_(c), m_(c.m) {}
-    bool smooth(VertexId v, TetId start);
+    bool smooth(VertexId v, const mesh::VertexBalls& balls);
     bool raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio,
                               std::uint32_t since);
 
@@ -160,8 +160,8 @@ bool Smoother::ball_valid(VertexId v) const {
 // worst kept above min(old worst, kMeanFloor). Every candidate keeps the
 // ball valid and within the size bound. Skipped when nothing in the ball
 // changed since the previous pass.
-bool Smoother::smooth(VertexId v, TetId start) {
-    if (!mesh::ball(m_, v, start, ball_)) return false;
+bool Smoother::smooth(VertexId v, const mesh::VertexBalls& balls) {
+    balls.get(v, ball_);
     bool changed = false;
     for (TetId t : ball_) changed = changed || c_.changed(t);
     // Nothing changed around v since its last try: it would fail again.
@@ -387,12 +387,12 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
 }
 
 std::size_t smooth_vertices(RefineContext& c) {
-    const std::vector<TetId> incident = mesh::incident_tets(c.m);
+    const mesh::VertexBalls balls(c.m);  // moves change no tetrahedron
     Smoother s(c);
     std::size_t moved = 0;
     for (VertexId v = 0; v < c.m.vertex_count(); ++v) {
-        if (!c.is_movable(v) || c.is_surface_vertex(v) || incident[v] == mesh::kNoTet) continue;
-        moved += s.smooth(v, incident[v]);
+        if (!c.is_movable(v) || c.is_surface_vertex(v) || balls.empty(v)) continue;
+        moved += s.smooth(v, balls);
     }
     return moved;
 }
