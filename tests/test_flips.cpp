@@ -1174,6 +1174,44 @@ TEST_CASE("VertexBalls lists each vertex's ball as ball() finds it, by slot") {
     CHECK(listed.empty());
 }
 
+TEST_CASE("reorder_tets keeps every tetrahedron, its flags and its neighbours") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(200, 53));
+    random_flips(m, 1500, 59);
+    const TetId spare[3] = {m.allocate_tet(), m.allocate_tet(), m.allocate_tet()};
+    for (TetId t : spare) m.release_tet(t);  // free slots: they go
+    Rng rng(61);
+    std::vector<TetId> order;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        order.push_back(t);
+        if (rng() % 5 == 0) m.set_mark(t, kFlagMarkA);
+        if (rng() % 7 == 0) {  // a constraint face, on both sides
+            const int f = static_cast<int>(rng() % 4);
+            const FacetRef across = m.neighbor(t, f);
+            m.set_constrained(t, f, true);
+            m.set_constrained(facet_tet(across), facet_face(across), true);
+        }
+    }
+    REQUIRE(m.free_count() > 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    const TetMesh before = m;
+    m.reorder_tets(order);
+    REQUIRE(m.slot_count() == order.size());
+    CHECK(m.free_count() == 0);
+    REQUIRE(check_mesh(m).ok());
+    std::vector<TetId> new_id(before.slot_count(), kNoTet);
+    for (TetId i = 0; i < order.size(); ++i) new_id[order[i]] = i;
+    for (TetId i = 0; i < order.size(); ++i) {
+        const TetId old = order[i];
+        CHECK(m.flags(i) == before.flags(old));
+        for (int k = 0; k < 4; ++k) {
+            CHECK(m.vertex(i, k) == before.vertex(old, k));
+            const FacetRef was = before.neighbor(old, k);
+            CHECK(m.neighbor(i, k) == make_facet(new_id[facet_tet(was)], facet_face(was)));
+        }
+    }
+}
+
 // The order in which the free list hands out slots (then new ones).
 std::vector<TetId> allocation_order(TetMesh m) {
     std::vector<TetId> order;

@@ -106,4 +106,22 @@ void TetMesh::clear_tets() {
     free_.clear();
 }
 
+void TetMesh::reorder_tets(const std::vector<TetId>& order) {
+    assert(!journal_open_ && "reorder_tets is not journaled");
+    assert(order.size() == live_count());
+    std::vector<TetId> new_id(slot_count(), kNoTet);
+    for (std::size_t i = 0; i < order.size(); ++i) new_id[order[i]] = static_cast<TetId>(i);
+    std::vector<TetRecord> tets(order.size());
+    std::vector<std::uint8_t> flags(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        TetRecord r = tets_[order[i]];
+        for (FacetRef& n : r.n) n = make_facet(new_id[facet_tet(n)], facet_face(n));
+        tets[i] = r;
+        flags[i] = flags_[order[i]];
+    }
+    tets_.swap(tets);
+    flags_.swap(flags);
+    free_.clear();
+}
+
 }  // namespace cbr::mesh

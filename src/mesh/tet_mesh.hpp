@@ -130,6 +130,10 @@ public:
     // Capacity hint so that growth reallocates rarely.
     void reserve_tets(std::size_t count);
     void clear_tets();
+    // Renumbers the tetrahedra: `order` lists every live slot once, and
+    // order[i] becomes slot i (neighbour references follow); free slots
+    // are dropped. Not journaled.
+    void reorder_tets(const std::vector<TetId>& order);
 
     // --- undo journal ---------------------------------------------------
     // While the journal is open, the first change to each tetrahedron slot

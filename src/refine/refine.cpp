@@ -49,6 +49,11 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
     const mesh::VertexId first_added = steiner.empty() ? 0 : *std::min_element(steiner.begin(), steiner.end());
     RefineContext c(m, faces, region_of_slot, steiner, options);
     insert_field_points(c, stats);  // step (d)
+    // The passes below sweep every tetrahedron and walk around each one:
+    // in the order insertion left them in memory, neighbours are scattered
+    // (igea: the optimisation passes 7.9 -> 5.4 s with this, the flips
+    // alone 4.5 -> 2.4 s; thingiverse-golf-ball's flips 1.05 -> 0.72 s).
+    c.reorder_tets();
     bool dropped = false;  // a vertex left the mesh: the ids close up at the end
     // §6: Steiner points minimization, retried on the refined mesh.
     if (options.steiner_suppression) remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
+#include "delaunay/spatial_sort.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -28,6 +30,36 @@ RefineContext::RefineContext(mesh::TetMesh& mesh, const recover::ConstraintFaces
             reach_[t[k]] = std::max(reach_[t[k]], r);
         }
     }
+}
+
+void RefineContext::reorder_tets() {
+    std::vector<mesh::TetId> live;
+    std::vector<double> centroids;
+    live.reserve(m.live_count());
+    centroids.reserve(3 * m.live_count());
+    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        const int corners = m.is_ghost(t) ? 3 : 4;
+        for (int k = 0; k < 3; ++k) {
+            double sum = 0;
+            for (int i = 0; i < corners; ++i) sum += m.point(m.vertex(t, i))[k];
+            centroids.push_back(sum / corners);
+        }
+        live.push_back(t);
+    }
+    std::vector<mesh::TetId> order(live.size());
+    std::vector<std::int32_t> region(live.size());
+    std::vector<std::uint32_t> stamp(live.size());
+    const std::vector<std::size_t> along = delaunay::hilbert_order(centroids.data(), live.size());
+    for (std::size_t i = 0; i < along.size(); ++i) {
+        const mesh::TetId t = live[along[i]];
+        order[i] = t;
+        region[i] = this->region(t);
+        stamp[i] = t < stamp_.size() ? stamp_[t] : 0;
+    }
+    m.reorder_tets(order);
+    region_.swap(region);
+    stamp_.swap(stamp);
 }
 
 void RefineContext::set_region(mesh::TetId t, std::int32_t r) {

@@ -75,6 +75,12 @@ public:
     std::uint32_t pass() const { return pass_; }
     bool changed_since(mesh::TetId t, std::uint32_t pass) const { return (t < stamp_.size() ? stamp_[t] : 0) >= pass; }
 
+    // Renumbers the tetrahedra of m along the Hilbert curve through their
+    // centroids (delaunay::hilbert_order; the regions and change stamps
+    // follow, free slots are dropped): the sweeps and walks after it read
+    // neighbouring tetrahedra from nearby memory.
+    void reorder_tets();
+
     // Registers a point appended to m (value of the sizing field there).
     void add_vertex(double h) { size.add(h); }
 
