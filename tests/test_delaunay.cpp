@@ -226,19 +226,39 @@ TEST_CASE("duplicates before the first tetrahedron exists") {
 
 TEST_CASE("Hilbert index visits neighbouring cells consecutively") {
     // On a 2^b grid, consecutive Hilbert indices are adjacent cells.
-    const int bits = 3, side = 1 << bits;
-    std::vector<std::array<int, 3>> by_index(side * side * side);
-    for (int x = 0; x < side; ++x)
-        for (int y = 0; y < side; ++y)
-            for (int z = 0; z < side; ++z)
-                by_index[cbr::delaunay::hilbert_index(x, y, z, bits)] = {x, y, z};
-    std::set<std::array<int, 3>> distinct(by_index.begin(), by_index.end());
-    CHECK(distinct.size() == by_index.size());  // a bijection
-    for (std::size_t i = 1; i < by_index.size(); ++i) {
-        int manhattan = 0;
-        for (int k = 0; k < 3; ++k) manhattan += std::abs(by_index[i][k] - by_index[i - 1][k]);
-        CHECK(manhattan == 1);
+    for (const int bits : {3, 6}) {
+        const int side = 1 << bits;
+        std::vector<std::array<int, 3>> by_index(static_cast<std::size_t>(side * side * side));
+        for (int x = 0; x < side; ++x)
+            for (int y = 0; y < side; ++y)
+                for (int z = 0; z < side; ++z) {
+                    const std::uint64_t i = cbr::delaunay::hilbert_index(x, y, z, bits);
+                    REQUIRE(i < by_index.size());
+                    by_index[i] = {x, y, z};
+                }
+        std::set<std::array<int, 3>> distinct(by_index.begin(), by_index.end());
+        CHECK(distinct.size() == by_index.size());  // a bijection
+        std::size_t not_adjacent = 0;
+        for (std::size_t i = 1; i < by_index.size(); ++i) {
+            int manhattan = 0;
+            for (int k = 0; k < 3; ++k) manhattan += std::abs(by_index[i][k] - by_index[i - 1][k]);
+            not_adjacent += manhattan != 1;
+        }
+        CHECK(not_adjacent == 0);
     }
+    // At full depth the first level decides: the eight octants of the
+    // 2^21 grid come in eight ranges of 2^60 indices, in curve order.
+    const std::uint32_t half = 1u << 20;
+    std::set<std::uint64_t> octant_ranges;
+    for (std::uint32_t o = 0; o < 8; ++o) {
+        const std::uint32_t x = (o & 1) * half, y = (o >> 1 & 1) * half, z = (o >> 2) * half;
+        const std::uint64_t low = cbr::delaunay::hilbert_index(x + 1, y + 2, z + 3, 21);
+        const std::uint64_t high = cbr::delaunay::hilbert_index(x + half - 1, y + half - 5, z + 7, 21);
+        CHECK((low >> 60) == (high >> 60));
+        CHECK(low < (std::uint64_t{1} << 63));
+        octant_ranges.insert(low >> 60);
+    }
+    CHECK(octant_ranges.size() == 8);
 }
 
 TEST_CASE("check_mesh reports each kind of corruption") {

@@ -36,6 +36,18 @@ void radix_sort(std::vector<KeyedId>& items, int key_bits) {
     }
 }
 
+// Bit b of x (b < 21) moved to bit 3b, the others zero: one axis of an
+// interleaved key, in five mask steps instead of a loop over the bits.
+std::uint64_t spread_bits(std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+}
+
 }  // namespace
 
 // Skilling's transform ("Programming the Hilbert curve", 2004): turns the
@@ -63,10 +75,8 @@ std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y, std::uint32_t z, i
         if (X[2] & q) t ^= q - 1;
     for (std::uint32_t& c : X) c ^= t;
 
-    std::uint64_t key = 0;
-    for (int b = bits - 1; b >= 0; --b)
-        for (int i = 0; i < 3; ++i) key = (key << 1) | ((X[i] >> b) & 1u);
-    return key;
+    // Bit b of X[0], X[1], X[2] goes to bit 3b + 2, 3b + 1, 3b.
+    return spread_bits(X[0]) << 2 | spread_bits(X[1]) << 1 | spread_bits(X[2]);
 }
 
 namespace {
