@@ -92,9 +92,9 @@ struct FlipState {
 // The unblocking tries of the flip states with those other budgets (the
 // ring-order state gets them all, as the first attempts had): the first
 // two, without the denser points (they had their chance in the default
-// flip state; on
-// the turned feeder body, which fails in every attempt, they took the time
-// to fail from 88 to 167 s when every attempt had them).
+// flip state; on the turned feeder body, which fails in every attempt,
+// they took the time to fail from 88 to 167 s when every attempt had
+// them).
 inline constexpr int kRetryUnblockingTries = 2;
 
 // Recovers every triangle of `faces` as a face of m, marking them as
