@@ -1243,6 +1243,48 @@ TEST_CASE("refine: a sliver spanning two input triangles gets a point") {
     CHECK(removed.quality.percent_below_0_1 == 0);
 }
 
+TEST_CASE("refine: sliver removal limited to flagged corners leaves the other slivers alone") {
+    // The ridged cube's flat tetrahedron 4-5-6-7, refined without flips and
+    // sliver points (so it stays), then sliver removal alone from a fresh
+    // context: with no corner flagged nothing is inserted, with a corner
+    // of the sliver flagged it gets its point, as it does unlimited. (The
+    // optimisation passes after options.optimisation_passes flag the
+    // Steiner points.)
+    cbr::refine::RefineOptions without;
+    without.flips = false;
+    without.slivers = false;
+    const auto slivers_after = [&](int flag) {  // -1: unlimited; else 0 none, 1 a sliver corner
+        RefinedAlone refined;
+        refine_then_context(ridged_cube(0.01), without, refined);
+        cbr::mesh::TetMesh& m = refined.r.d.mesh_for_update();
+        std::vector<TetId> bad;
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            if (refined.c->in_domain(t) && cbr::refine::radius_ratio(m, t) < 0.1) bad.push_back(t);
+        REQUIRE(!bad.empty());
+        std::vector<char> flags(m.vertex_count(), 0);
+        if (flag == 1) flags[m.vertex(bad[0], 0)] = 1;
+        cbr::refine::RefineStats stats;
+        const std::size_t inserted =
+            cbr::refine::remove_slivers(*refined.c, 0.1, stats, flag < 0 ? nullptr : &flags);
+        REQUIRE(cbr::mesh::check_mesh(m).ok());
+        std::size_t left = 0;
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            left += refined.c->in_domain(t) && cbr::refine::radius_ratio(m, t) < 0.1;
+        return std::pair<std::size_t, std::size_t>{inserted, left};
+    };
+    const auto [unlimited, unlimited_left] = slivers_after(-1);
+    const auto [none, none_left] = slivers_after(0);
+    const auto [at_corner, corner_left] = slivers_after(1);
+    MESSAGE("sliver points: unlimited " << unlimited << ", no corner flagged " << none << ", a corner flagged "
+                                        << at_corner << "; slivers left " << unlimited_left << ", " << none_left
+                                        << ", " << corner_left);
+    CHECK(unlimited >= 1);
+    CHECK(none == 0);
+    CHECK(none_left > 0);
+    CHECK(at_corner >= 1);
+    CHECK(corner_left < none_left);
+}
+
 TEST_CASE("refine: a coarse surface bounds the size next to it") {
     // Faces of edge 1 and H = 0.2: no edge into the interior from a corner
     // can be shorter than about the faces' circumradius, so only the

@@ -556,12 +556,17 @@ bool SliverRemover::insert(TetId sliver, Choice& best) {
 
 }  // namespace
 
-std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats) {
+std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats, const std::vector<char>* only_at) {
     SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
+    const auto flagged = [&](TetId t) {
+        const VertexId* w = c.m.vertices(t);
+        return std::any_of(w, w + 4, [&](VertexId v) { return v < only_at->size() && (*only_at)[v]; });
+    };
     for (TetId t = 0; t < slots; ++t) {
-        if (c.in_domain(t) && c.changed_near(t) && radius_ratio(c.m, t) < threshold) inserted += remover.remove(t);
+        if (c.in_domain(t) && (!only_at || flagged(t)) && c.changed_near(t) && radius_ratio(c.m, t) < threshold)
+            inserted += remover.remove(t);
     }
     stats.sliver_cavities_skipped += remover.skipped();
     return inserted;
