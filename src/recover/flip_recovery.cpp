@@ -401,8 +401,8 @@ private:
         const bool memo = memo_ == FlipMemo::kOn && around.size() >= mesh::FailedRings::kMinRing;
         const std::uint64_t ring = memo ? mesh::FailedRings::key(u, v, around) : 0;
         if (!memo || !failed_rings_.contains(ring)) {
-            const FlipResult r =
-                may_triangulate ? mesh::remove_edge(m_, u, v, around, protect_, &created_) : FlipResult::kNoValidTriangulation;
+            const FlipResult r = may_triangulate ? mesh::remove_edge(m_, u, v, around, protect_, &created_)
+                                                 : FlipResult::kNoValidTriangulation;
             if (done(r)) return true;
             if (memo && r == FlipResult::kNoValidTriangulation) failed_rings_.insert(ring);
         }

@@ -82,12 +82,12 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             options.steiner_suppression ? remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped) : 0;
         const std::size_t relocated =
             options.steiner_relocation ? relocate_steiner_points(c, steiner, kSliverThreshold) : 0;
-        std::vector<char> at_steiner;  // an extra pass: sliver points only at the Steiner points
-        if (pass >= options.optimisation_passes) at_steiner = steiner_flags(m, steiner);
+        // An extra pass: sliver points only at the Steiner points.
+        const bool extra = pass >= options.optimisation_passes;
+        std::vector<char> at_steiner;
+        if (extra) at_steiner = steiner_flags(m, steiner);
         const std::size_t slivers =
-            options.slivers
-                ? remove_slivers(c, kSliverThreshold, stats, pass >= options.optimisation_passes ? &at_steiner : nullptr)
-                : 0;
+            options.slivers ? remove_slivers(c, kSliverThreshold, stats, extra ? &at_steiner : nullptr) : 0;
         steiner_progress = suppressed > 0 || relocated > 0;
         stats.steiner_relocated += relocated;
         stats.flips += flips;
