@@ -36,7 +36,7 @@ QualityTable measure_quality(const mesh::TetMesh& m, const std::vector<std::int3
         if (q > 0.4) ++above;
         if (q < 0.1) {
             ++below;
-            if (is_steiner[v[0]] || is_steiner[v[1]] || is_steiner[v[2]] || is_steiner[v[3]]) ++s.bad_touching_steiner;
+            if (has_flagged_corner(m, t, is_steiner)) ++s.bad_touching_steiner;
         }
     }
     if (s.tets == 0) return s;

@@ -23,6 +23,16 @@ struct QualityTable {
 // points), 0 for the others.
 std::vector<char> steiner_flags(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& steiner);
 
+// Whether live finite tetrahedron t has a corner flagged in `flags` (one
+// per vertex, as steiner_flags gives them; a vertex added after the flags
+// were made counts as unflagged).
+inline bool has_flagged_corner(const mesh::TetMesh& m, mesh::TetId t, const std::vector<char>& flags) {
+    const mesh::VertexId* w = m.vertices(t);
+    for (int i = 0; i < 4; ++i)
+        if (w[i] < flags.size() && flags[w[i]]) return true;
+    return false;
+}
+
 // Over the live finite tetrahedra t with region_of_slot[t] > 0; `steiner`:
 // the Steiner points of recovery (internal ids). All zero without any
 // tetrahedron.

@@ -13,6 +13,7 @@
 #include "recover/protected_insertion.hpp"
 #include "refine/compass_search.hpp"
 #include "refine/deepest_point.hpp"
+#include "refine/quality_stats.hpp"
 #include "refine/tet_measures.hpp"
 
 namespace cbr::refine {
@@ -560,12 +561,9 @@ std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stat
     SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
-    const auto flagged = [&](TetId t) {
-        const VertexId* w = c.m.vertices(t);
-        return std::any_of(w, w + 4, [&](VertexId v) { return v < only_at->size() && (*only_at)[v]; });
-    };
     for (TetId t = 0; t < slots; ++t) {
-        if (c.in_domain(t) && (!only_at || flagged(t)) && c.changed_near(t) && radius_ratio(c.m, t) < threshold)
+        if (c.in_domain(t) && (!only_at || has_flagged_corner(c.m, t, *only_at)) && c.changed_near(t) &&
+            radius_ratio(c.m, t) < threshold)
             inserted += remover.remove(t);
     }
     stats.sliver_cavities_skipped += remover.skipped();

@@ -205,10 +205,7 @@ std::size_t bad_tets_at_steiner(const RefineContext& c, const std::vector<Vertex
     std::size_t bad = 0;
     for (TetId t = 0; t < c.m.slot_count(); ++t) {
         if (!c.in_domain(t)) continue;
-        const VertexId* w = c.m.vertices(t);
-        if ((is_steiner[w[0]] || is_steiner[w[1]] || is_steiner[w[2]] || is_steiner[w[3]]) &&
-            radius_ratio(c.m, t) < threshold)
-            ++bad;
+        if (has_flagged_corner(c.m, t, is_steiner) && radius_ratio(c.m, t) < threshold) ++bad;
     }
     return bad;
 }
