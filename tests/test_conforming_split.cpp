@@ -1308,13 +1308,18 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     // ring order) after a failure, once the enclosing box has failed too
     // (test_capi_recover checks that order on another prism). Since
     // session 33 the default order (the blocking ring vertices first)
-    // recovers it in the first attempt. If ring order with the default
-    // budget ever succeeds, this test no longer shows why the retry is
-    // there, and says so.
+    // recovers it in the first attempt, and since session 37 so does ring
+    // order with the deepest round's two stages (flip_recovery.cpp,
+    // kSearches); the failing state is now ring order with one deepest
+    // round of 40,000 removals a face, the default until then. If it ever
+    // succeeds, this test no longer shows why the retry is there, and
+    // says so.
     cbr::test::OffSurface s;
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r22.off", s));
     {
-        const cbr::recover::RecoveryResult r = recover_fresh(s, in_ring_order());
+        cbr::recover::RecoveryOptions one_deepest_round = in_ring_order();
+        one_deepest_round.deepest_flip_budget = 40000;
+        const cbr::recover::RecoveryResult r = recover_fresh(s, one_deepest_round);
         CHECK_FALSE(r.ok);
         CHECK(r.invalid.empty());
         CHECK_FALSE(r.unrecovered.empty());
@@ -1602,4 +1607,58 @@ TEST_CASE("flip recovery: the blocking ring vertices first recover what the deep
     const auto [with_deepest, without] = left_with_and_without_deepest("chazelle", chazelle.xyz, chazelle.tris);
     CHECK(with_deepest == 0);
     CHECK(without == 0);
+}
+
+namespace {
+
+// Flip recovery of `xyz, tris` with every round, the nested removals in
+// ring order and the deepest round as `deepest_budget` says (0: its two
+// stages); the faces left, and in `spent` the removals of each round.
+std::vector<std::size_t> flips_in_ring_order(const std::string& name, const std::vector<double>& xyz,
+                                             const std::vector<std::int64_t>& tris, int deepest_budget,
+                                             std::vector<long>& spent) {
+    INFO(name);
+    Case c;
+    build(c, xyz, tris);
+    const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(c.m(), *c.faces);
+    const std::vector<std::size_t> left = cbr::recover::recover_by_flips(
+        c.m(), *c.faces, missing, cbr::recover::FlipMemo::kOn, cbr::recover::FlipRounds::kAll, deepest_budget,
+        cbr::recover::FlipDirection::kAsGiven, cbr::recover::NestedOrder::kRing, &spent);
+    require_valid(c.m(), name.c_str());
+    std::string rounds;
+    for (long s : spent) rounds += " " + std::to_string(s);
+    MESSAGE(name << ", deepest budget " << deepest_budget << ": " << missing.size() << " missing, " << left.size()
+                 << " left; removals per round" << rounds);
+    return left;
+}
+
+}  // namespace
+
+TEST_CASE("flip recovery: the deepest round's second stage, within its allowance") {
+    // flip_recovery.cpp, kSearches: the deepest round gives every face
+    // 1,500 edge removals, then the faces left 40,000 each while the
+    // stage has spent less than 80,000 in all.
+    std::vector<long> spent;
+    // Faces that need more than the first stage: the Chazelle polyhedron
+    // in ring order, whose deepest round recovers 6 faces (above).
+    const cbr::test::Polyhedron chazelle = cbr::test::chazelle_polyhedron();
+    CHECK(flips_in_ring_order("chazelle", chazelle.xyz, chazelle.tris, 0, spent).empty());
+    REQUIRE(spent.size() == 5);
+    CHECK(spent[4] > 0);  // the second stage ran, and recovered what the first left
+    CHECK_FALSE(flips_in_ring_order("chazelle", chazelle.xyz, chazelle.tris, 1500, spent).empty());
+    REQUIRE(spent.size() == 4);  // one deepest round in place of the two stages
+    // Faces that no search recovers spend their whole budget: a turned
+    // prism with fanned caps (the caps need Steiner points). One round of
+    // 40,000 a face spends many budgets; the second stage at most two.
+    cbr::test::OffSurface prism;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r22.off", prism));
+    const std::size_t left_single = flips_in_ring_order("prism", prism.xyz, prism.tris, 40000, spent).size();
+    REQUIRE(spent.size() == 4);
+    CHECK(spent[3] > 2 * 40000);
+    const std::size_t left_staged = flips_in_ring_order("prism", prism.xyz, prism.tris, 0, spent).size();
+    REQUIRE(spent.size() == 5);
+    CHECK(spent[4] > 0);
+    CHECK(spent[4] <= 2 * 40000);
+    CHECK(left_staged > 0);
+    MESSAGE("prism: " << left_single << " faces left with one deepest round, " << left_staged << " with two stages");
 }

@@ -24,8 +24,8 @@ namespace cbr::recover {
 enum class FlipMemo { kOn, kOff };
 
 // Whether the last, deepest round of searches runs (flip_recovery.cpp,
-// kSearches): it recovers faces that would otherwise need Steiner points,
-// at most of the flips' time on the hard shared surfaces.
+// kSearches, its two stages): it recovers faces that would otherwise need
+// Steiner points, at most of the flips' time on the hard shared surfaces.
 enum class FlipRounds { kAll, kWithoutDeepest };
 
 // Which way a face's edges are walked: as the triangle (a, b, c) lists
@@ -53,13 +53,20 @@ enum class NestedOrder { kBlockingFirst, kRing };
 
 // Tries to recover the faces `missing` (indices into `faces`); marks the
 // recovered ones as constraint faces; returns those still missing, in
-// increasing order. `deepest_budget`: edge removals a face in the first
-// pass of the deepest round (0: kSearches' own, 40,000); tests vary it to
-// reach the other mesh states that flips can leave to the later steps.
+// increasing order. `deepest_budget`: 0, the deepest round of kSearches
+// (1,500 edge removals a face, then 40,000 for the faces left while the
+// round has spent less than 80,000 in all); otherwise one deepest round of
+// that many removals a face in its first pass, with no limit on the
+// round. The retries after a failure take the second (recovery.hpp,
+// kRetryFlipBudgets), and tests vary it to reach the other mesh states
+// that flips can leave to the later steps. `spent_per_round`, when given:
+// the edge removals each round spent, every face and pass together (a
+// search known to fail counts what it spent when it ran).
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn,
                                           FlipRounds rounds = FlipRounds::kAll, int deepest_budget = 0,
                                           FlipDirection direction = FlipDirection::kAsGiven,
-                                          NestedOrder nested = NestedOrder::kBlockingFirst);
+                                          NestedOrder nested = NestedOrder::kBlockingFirst,
+                                          std::vector<long>* spent_per_round = nullptr);
 
 }  // namespace cbr::recover

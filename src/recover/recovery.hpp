@@ -43,9 +43,10 @@ struct RecoveryOptions {
     // The deepest round of flip searches before the interior Steiner points
     // (CBR_PARAM_RECOVERY_DEEP_FLIPS): fewer Steiner points, more time.
     bool deep_flips = true;
-    // Edge removals a face in that round (0: the default of
-    // flip_recovery.cpp). Not in the C API: tests vary it to reach other
-    // mesh states for the steps after the flips.
+    // Edge removals a face in that round (0: the two stages of
+    // flip_recovery.cpp, kSearches; otherwise one round of that many a
+    // face). Not in the C API: the retries and the tests vary it to reach
+    // other mesh states for the steps after the flips.
     int deepest_flip_budget = 0;
     // cbr_mesh_recover_faces (api_recover.cpp, recover_in_attempts), after
     // a failure: recovery again with the eight corners of an enclosing box
