@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "handle.hpp"
+#include "recover/constraint_faces.hpp"
 #include "recover/surface_check.hpp"
 
 using cbr::capi::ApiError;
@@ -60,6 +61,24 @@ std::vector<double> points_in_caller_order(const cbr::delaunay::Delaunay& d) {
     for (cbr::mesh::VertexId v = 0; v < n; ++v)
         std::memcpy(xyz.data() + 3 * std::size_t{d.external_id(v)}, d.mesh().point(v), 3 * sizeof(double));
     return xyz;
+}
+
+// Per triangle (0-based caller ids, unchecked): whether it is a face of the
+// handle's mesh, which is always a valid tetrahedralization of its points
+// (the Delaunay mesh, or the mesh recovery or refinement left), so that
+// check_surface skips the pairs of two such faces (SurfaceCheckOptions::
+// known_faces). Empty when the mesh has no tetrahedron.
+std::vector<char> faces_of_the_mesh(const cbr_mesh& h, const std::vector<std::int64_t>& ids) {
+    if (h.delaunay.finite_tet_count() == 0) return {};
+    const auto points = static_cast<std::int64_t>(h.delaunay.mesh().vertex_count());
+    std::vector<cbr::recover::Triangle> tris(ids.size() / 3);
+    for (std::size_t i = 0; i < tris.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t id = ids[3 * i + static_cast<std::size_t>(k)];
+            tris[i][k] = id >= 0 && id < points ? h.delaunay.internal_id(static_cast<cbr::mesh::VertexId>(id))
+                                                : cbr::mesh::kGhostVertex;  // never a face's
+        }
+    return cbr::recover::faces_of_mesh(h.delaunay.mesh(), tris);
 }
 
 // The message of a check that found errors: the counts and the first error
@@ -125,8 +144,11 @@ CBR_API int cbr_mesh_check_faces(cbr_mesh* mesh, int64_t count, const int64_t* t
         std::vector<std::int64_t> ids(3 * static_cast<std::size_t>(count));
         for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = to_zero_based(tris[k], base);
         const std::vector<double> xyz = points_in_caller_order(mesh->delaunay);
+        cbr::recover::SurfaceCheckOptions options;
+        const std::vector<char> known = faces_of_the_mesh(*mesh, ids);
+        if (!known.empty()) options.known_faces = &known;
         SurfaceCheckResult report = cbr::recover::check_surface(
-            xyz.data(), static_cast<std::int64_t>(xyz.size() / 3), ids.data(), count);
+            xyz.data(), static_cast<std::int64_t>(xyz.size() / 3), ids.data(), count, options);
         std::string message = report.ok() ? std::string() : error_message(report, base);
         mesh->last_check = std::move(report);
         if (!message.empty()) throw ApiError{CBR_ERR_INVALID_INPUT, std::move(message)};

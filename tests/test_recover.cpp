@@ -2,6 +2,8 @@
 // found after Delaunay, region classification, missing faces reported.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <set>
 
 #include "delaunay/delaunay.hpp"
@@ -112,6 +114,55 @@ TEST_CASE("a surface made of Delaunay faces is recovered as is, and its regions 
         }
     }
     CHECK(region_volume == doctest::Approx(inside_volume).epsilon(1e-12));
+}
+
+TEST_CASE("faces_of_mesh: which triangles are faces of the mesh, whatever their ids") {
+    // The boundary of a ball of tetrahedra (every triangle a face), in
+    // either orientation, mixed with triangles that are not faces (a face's
+    // vertices with one replaced, all combinations of a tetrahedron's
+    // vertices with an outside one), a triangle twice, ids out of range, a
+    // repeated id and the ghost vertex. Checked against the faces of the
+    // live tetrahedra, listed one by one.
+    cbr::delaunay::Delaunay d;
+    const auto xyz = cbr::test::random_points(1500, 91);
+    REQUIRE(d.insert_points(xyz.data(), 1500).ok);
+    const TetMesh& m = d.mesh();
+    const double centre[3] = {0.5, 0.5, 0.5};
+    std::vector<Triangle> tris = boundary_of(m, tets_within(m, centre, 0.3));
+    const std::size_t boundary = tris.size();
+    REQUIRE(boundary > 50);
+    for (std::size_t i = 0; i < boundary; i += 3) {
+        tris.push_back({tris[i][0], tris[i][2], tris[i][1]});
+        tris.push_back({tris[i][0], tris[i][1], static_cast<VertexId>((tris[i][2] + 7) % 1500)});
+    }
+    tris.push_back(tris[0]);
+    tris.push_back({0, 1, 1500});
+    tris.push_back({2, 2, 3});
+    tris.push_back({tris[1][0], tris[1][1], cbr::mesh::kGhostVertex});
+    std::set<std::array<VertexId, 3>> faces;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        for (int f = 0; f < 4; ++f) {
+            const VertexId* v = m.vertices(t);
+            std::array<VertexId, 3> k = {v[cbr::mesh::kFaceVertices[f][0]], v[cbr::mesh::kFaceVertices[f][1]],
+                                         v[cbr::mesh::kFaceVertices[f][2]]};
+            std::sort(k.begin(), k.end());
+            if (k[2] != cbr::mesh::kGhostVertex) faces.insert(k);
+        }
+    }
+    const std::vector<char> is_face = cbr::recover::faces_of_mesh(m, tris);
+    REQUIRE(is_face.size() == tris.size());
+    std::size_t found = 0, not_found = 0;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        std::array<VertexId, 3> k = tris[i];
+        std::sort(k.begin(), k.end());
+        const bool expected = faces.count(k) > 0;
+        CHECK_MESSAGE(static_cast<bool>(is_face[i]) == expected, "triangle " << i);
+        (expected ? found : not_found) += 1;
+    }
+    CHECK(found >= boundary + boundary / 3 + 1);  // both orientations and the copy
+    CHECK(not_found >= 4);
+    CHECK(is_face.back() == 0);
 }
 
 TEST_CASE("input triangles are found by their vertices, and their edges by their ends") {

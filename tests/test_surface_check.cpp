@@ -420,6 +420,70 @@ TEST_CASE("intersecting pairs agree with an all-pairs search on random soups") {
     }
 }
 
+TEST_CASE("known faces: only pairs of two of them are left untested") {
+    // SurfaceCheckOptions::known_faces: the caller vouches that those
+    // triangles are faces of one valid tetrahedralization, so no two of
+    // them meet illegally. On random soups, triangles picked so that no two
+    // of them meet illegally (as the faces of a mesh): the same defects,
+    // listed and counted, as without the flags; the pairs of a known and
+    // an unknown triangle are still tested.
+    std::mt19937_64 rng(5151);
+    const auto pick = [&rng](int lo, int hi) {
+        const auto span = static_cast<unsigned>(hi - lo + 1);
+        return static_cast<double>(lo + static_cast<int>(rng() % span));
+    };
+    std::int64_t crossings_with_known = 0;
+    for (int round = 0; round < 10; ++round) {
+        const int side = 4 + 2 * round;
+        Mesh m;
+        for (int i = 0; i < 150; ++i) {
+            const double x = pick(0, side), y = pick(0, side), z = pick(0, side);
+            const auto a = m.add_point(x, y, z);
+            const auto b = m.add_point(x + pick(-2, 2), y + pick(-2, 2), z + pick(-2, 2));
+            const auto c = m.add_point(x + pick(-2, 2), y + pick(-2, 2), z + pick(-2, 2));
+            m.add_tri(a, b, c);
+        }
+        std::vector<char> known(static_cast<std::size_t>(m.triangles()), 0);
+        for (std::int64_t t = 0; t < m.triangles(); ++t) {
+            bool clear = rng() % 2 == 0;
+            for (std::int64_t u = 0; u < t && clear; ++u)
+                if (known[static_cast<std::size_t>(u)] && brute_pair_meets(m, u, t)) clear = false;
+            known[static_cast<std::size_t>(t)] = clear ? 1 : 0;
+        }
+        for (std::int64_t t = 0; t < m.triangles(); ++t)
+            for (std::int64_t u = t + 1; u < m.triangles(); ++u)
+                if ((known[static_cast<std::size_t>(t)] || known[static_cast<std::size_t>(u)]) &&
+                    brute_pair_meets(m, t, u))
+                    ++crossings_with_known;
+        cbr::recover::SurfaceCheckOptions vouched;
+        vouched.known_faces = &known;
+        const SurfaceCheckResult all = check(m), fewer = check(m, vouched);
+        CAPTURE(round);
+        CHECK(fewer.counts == all.counts);
+        REQUIRE(fewer.defects.size() == all.defects.size());
+        for (std::size_t i = 0; i < all.defects.size(); ++i) {
+            CHECK(fewer.defects[i].kind == all.defects[i].kind);
+            CHECK(fewer.defects[i].tri == all.defects[i].tri);
+        }
+    }
+    CHECK(crossings_with_known > 0);  // the soups test the known-unknown pairs
+}
+
+TEST_CASE("known faces: a crossing pair vouched for is not tested") {
+    // The promise is trusted: a caller must vouch only for faces of a mesh.
+    Mesh m = tetrahedron();
+    const auto a = m.add_point(0.2, -1, 0.2);
+    const auto b = m.add_point(0.2, 1, 0.2);
+    const auto c = m.add_point(0.3, 0.5, 5);
+    m.add_tri(a, b, c);
+    std::vector<char> known = {0, 1, 0, 0, 1};  // triangles 1 and 4 cross, 2 and 4 too
+    cbr::recover::SurfaceCheckOptions vouched;
+    vouched.known_faces = &known;
+    const auto x = of_kind(check(m, vouched), DefectKind::Intersection);
+    REQUIRE(x.size() == 1);
+    CHECK(x[0].tri == std::array<std::int64_t, 2>{2, 4});
+}
+
 // ---------------------------------------------------------------------------
 // The shared data set.
 // ---------------------------------------------------------------------------

@@ -122,4 +122,43 @@ std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFa
     return missing;
 }
 
+std::vector<char> faces_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris) {
+    std::vector<char> is_face(tris.size(), 0);
+    // The triangles with distinct ids of m, filed under their smallest id
+    // (as ConstraintFaces files them; a triangle given twice is filed
+    // twice), then every face of the mesh looked up once, in storage order.
+    const std::size_t n = m.vertex_count();
+    const auto own = [n](const Triangle& t) {
+        return t[0] < n && t[1] < n && t[2] < n && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+    };
+    const std::vector<std::uint32_t> first = bucket_starts(n, [&](auto file) {
+        for (const Triangle& t : tris)
+            if (own(t)) file(std::min({t[0], t[1], t[2]}));
+    });
+    struct Filed {
+        mesh::VertexId middle, largest;
+        std::uint32_t index;
+    };
+    std::vector<Filed> entries(first[n]);
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        if (!own(tris[i])) continue;
+        const Triangle k = sorted(tris[i][0], tris[i][1], tris[i][2]);
+        entries[fill[k[0]]++] = Filed{k[1], k[2], static_cast<std::uint32_t>(i)};
+    }
+    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        for (int f = 0; f < 4; ++f) {
+            if (mesh::facet_tet(m.neighbor(t, f)) < t) continue;  // each face once
+            const mesh::VertexId* v = m.vertices(t);
+            const Triangle k = sorted(v[mesh::kFaceVertices[f][0]], v[mesh::kFaceVertices[f][1]],
+                                      v[mesh::kFaceVertices[f][2]]);
+            if (k[2] == mesh::kGhostVertex) continue;  // the largest id, when there is one
+            for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
+                if (entries[e].middle == k[1] && entries[e].largest == k[2]) is_face[entries[e].index] = 1;
+        }
+    }
+    return is_face;
+}
+
 }  // namespace cbr::recover

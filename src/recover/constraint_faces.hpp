@@ -65,4 +65,9 @@ private:
 // not faces of the mesh, in increasing order.
 std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces);
 
+// Per triangle of `tris` (any ids, unchecked): 1 where it is a face of a
+// live tetrahedron of m, else 0 (also for an id m does not have, the ghost
+// vertex's included, or a repeated id). Changes nothing.
+std::vector<char> faces_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris);
+
 }  // namespace cbr::recover

@@ -58,6 +58,14 @@ struct SurfaceCheckOptions {
     // the deterministic order below); the counts are always complete.
     std::size_t max_listed_per_kind = 20;
     bool report_edges = true;  // compute the OpenEdge / NonManifoldEdge info
+    // Per triangle, when given: nonzero where the caller knows the triangle
+    // to be a face of a valid tetrahedralization of the points (every
+    // tetrahedron positively oriented, exactly; cbr_mesh_check_faces: its
+    // mesh). Two faces of one such tetrahedralization meet only in a shared
+    // vertex or edge, so the pairs of two of them are not tested; every
+    // pair with another triangle is, and the result is the same. (igea:
+    // 1,349 of its 268,686 triangles are not faces of the Delaunay mesh.)
+    const std::vector<char>* known_faces = nullptr;
 };
 
 struct SurfaceCheckResult {
