@@ -75,6 +75,17 @@ struct Accumulator {
     }
 };
 
+// Whether atan2(s1, c1) < atan2(s2, c2), for s1, s2 >= 0: sin(second -
+// first) = s2 c1 - c2 s1 (times the lengths) is positive; where it is 0 the
+// directions are parallel (equal angles, or 0 against 180 degrees, told
+// apart by c). A vanishing normal, (0, 0), is atan2's 0 degrees; it comes
+// only with four coplanar corners, whose other angles are 0 or 180, and
+// against those c tells it right.
+bool angle_below(double s1, double c1, double s2, double c2) {
+    const double sine = s2 * c1 - c2 * s1;
+    return sine != 0 ? sine > 0 : c1 > c2;
+}
+
 }  // namespace
 
 double tet_quality(const double* a, const double* b, const double* c, const double* d) {
@@ -103,16 +114,25 @@ void tet_dihedral_range(const double* a, const double* b, const double* c, const
     // Edge (i, j) and the two other corners (k, l).
     static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                          {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-    min_deg = 180;
-    max_deg = 0;
-    for (const auto& e : kEdges) {
+    // The angle at an edge is atan2(sine, cosine), sine = |n1 x n2| >= 0,
+    // cosine = n1 . n2 (both scaled by |n1| |n2|). Angles in [0, 180]
+    // compare without it (angle_below), so atan2, three quarters of the
+    // measuring of igea's 800,000 tetrahedra when it ran on every edge,
+    // runs twice.
+    double sine[6], cosine[6];
+    int smallest = 0, largest = 0;
+    for (int i = 0; i < 6; ++i) {
+        const int* e = kEdges[i];
         const Vec edge = sub(p[e[1]], p[e[0]]);
         const Vec n1 = cross(edge, sub(p[e[2]], p[e[0]]));
         const Vec n2 = cross(edge, sub(p[e[3]], p[e[0]]));
-        const double deg = std::atan2(norm(cross(n1, n2)), dot(n1, n2)) * (180 / kPi);
-        min_deg = std::min(min_deg, deg);
-        max_deg = std::max(max_deg, deg);
+        sine[i] = norm(cross(n1, n2));
+        cosine[i] = dot(n1, n2);
+        if (angle_below(sine[i], cosine[i], sine[smallest], cosine[smallest])) smallest = i;
+        if (angle_below(sine[largest], cosine[largest], sine[i], cosine[i])) largest = i;
     }
+    min_deg = std::atan2(sine[smallest], cosine[smallest]) * (180 / kPi);
+    max_deg = std::atan2(sine[largest], cosine[largest]) * (180 / kPi);
 }
 
 QualityReport measure_quality(io::VolumeMesh& mesh) {
