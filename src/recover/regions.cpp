@@ -29,39 +29,57 @@ struct Component {
     std::uint64_t key = kNoKey;  // smallest 2 * triangle + side on the boundary
 };
 
+// The root of t's set: the smallest slot in it (unions always hang the
+// larger root under the smaller), with the path halved on the way.
+TetId root_of(std::vector<TetId>& parent, TetId t) {
+    while (parent[t] != t) {
+        parent[t] = parent[parent[t]];
+        t = parent[t];
+    }
+    return t;
+}
+
 }  // namespace
 
 RegionMap classify_regions(const mesh::TetMesh& m, const ConstraintFaces& faces) {
     RegionMap map;
     map.of_tet.assign(m.slot_count(), -1);
+    // The components, as sets joined across every face that is not a
+    // constraint face, in one pass over the tetrahedra in storage order
+    // (a search from each tetrahedron jumped across memory: igea's 800,000
+    // tetrahedra took 0.1 s). Component k is the one with the k-th
+    // smallest root, as a search from each slot in turn would number them.
+    std::vector<TetId> parent(m.slot_count());
+    for (TetId t = 0; t < m.slot_count(); ++t) parent[t] = t;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        for (int f = 0; f < 4; ++f) {
+            if (m.is_constrained(t, f)) continue;
+            const TetId n = mesh::facet_tet(m.neighbor(t, f));
+            if (n < t) continue;  // each face once
+            const TetId a = root_of(parent, t), b = root_of(parent, n);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+    }
     std::vector<Component> components;
-    std::vector<TetId> stack;
-    for (TetId seed = 0; seed < m.slot_count(); ++seed) {
-        if (m.is_free(seed) || map.of_tet[seed] >= 0) continue;
-        const auto id = static_cast<std::int32_t>(components.size());
-        components.emplace_back();
-        map.of_tet[seed] = id;
-        stack.assign(1, seed);
-        while (!stack.empty()) {
-            const TetId t = stack.back();
-            stack.pop_back();
-            Component& c = components[static_cast<std::size_t>(id)];
-            if (m.is_ghost(t)) c.outside = true;
-            for (int f = 0; f < 4; ++f) {
-                if (m.is_constrained(t, f)) {
-                    const VertexId* v = m.vertices(t);
-                    const std::size_t tri = faces.find(v[mesh::kFaceVertices[f][0]], v[mesh::kFaceVertices[f][1]],
-                                                       v[mesh::kFaceVertices[f][2]]);
-                    if (tri != ConstraintFaces::npos)
-                        c.key = std::min<std::uint64_t>(c.key, 2 * tri + side_of(m, t, f, faces.triangle(tri)));
-                    continue;
-                }
-                const TetId n = mesh::facet_tet(m.neighbor(t, f));
-                if (map.of_tet[n] < 0) {
-                    map.of_tet[n] = id;
-                    stack.push_back(n);
-                }
-            }
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        const TetId r = root_of(parent, t);
+        if (r == t) {
+            map.of_tet[t] = static_cast<std::int32_t>(components.size());
+            components.emplace_back();
+        } else {
+            map.of_tet[t] = map.of_tet[r];  // r < t: numbered already
+        }
+        Component& c = components[static_cast<std::size_t>(map.of_tet[t])];
+        if (m.is_ghost(t)) c.outside = true;
+        for (int f = 0; f < 4; ++f) {
+            if (!m.is_constrained(t, f)) continue;
+            const VertexId* v = m.vertices(t);
+            const std::size_t tri =
+                faces.find(v[mesh::kFaceVertices[f][0]], v[mesh::kFaceVertices[f][1]], v[mesh::kFaceVertices[f][2]]);
+            if (tri != ConstraintFaces::npos)
+                c.key = std::min<std::uint64_t>(c.key, 2 * tri + side_of(m, t, f, faces.triangle(tri)));
         }
     }
     // Outside first, then by key.
