@@ -280,13 +280,23 @@ TEST_CASE("error: the same triangle twice") {
     CHECK(describe(d[1]) == "triangles 0 and 5 are the same triangle (vertices 1, 0, 2)");
 }
 
-TEST_CASE("error: crossing triangles") {
+namespace {
+
+// The tetrahedron and a fifth triangle (4) piercing its face 1 (0, 1, 3;
+// y = 0) through the interior.
+Mesh pierced_tetrahedron() {
     Mesh m = tetrahedron();
-    // A triangle piercing face (0, 1, 3) (y = 0) through its interior.
     const auto a = m.add_point(0.2, -1, 0.2);
     const auto b = m.add_point(0.2, 1, 0.2);
     const auto c = m.add_point(0.3, 0.5, 5);
     m.add_tri(a, b, c);
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("error: crossing triangles") {
+    const Mesh m = pierced_tetrahedron();
     const SurfaceCheckResult r = check(m);
     CHECK_FALSE(r.ok());
     const auto x = of_kind(r, DefectKind::Intersection);
@@ -471,11 +481,7 @@ TEST_CASE("known faces: only pairs of two of them are left untested") {
 
 TEST_CASE("known faces: a crossing pair vouched for is not tested") {
     // The promise is trusted: a caller must vouch only for faces of a mesh.
-    Mesh m = tetrahedron();
-    const auto a = m.add_point(0.2, -1, 0.2);
-    const auto b = m.add_point(0.2, 1, 0.2);
-    const auto c = m.add_point(0.3, 0.5, 5);
-    m.add_tri(a, b, c);
+    const Mesh m = pierced_tetrahedron();
     std::vector<char> known = {0, 1, 0, 0, 1};  // triangles 1 and 4 cross, 2 and 4 too
     cbr::recover::SurfaceCheckOptions vouched;
     vouched.known_faces = &known;
