@@ -22,6 +22,23 @@ std::vector<std::uint32_t> bucket_starts(std::size_t n, ForEachKey for_each_key)
     return start;
 }
 
+// Calls visit(t, f, k) once for every face of m without the ghost vertex:
+// face f of live tetrahedron t, the lower slot of its two, k its vertices
+// in increasing order.
+template <class Visit>
+void for_each_finite_face(const mesh::TetMesh& m, Visit visit) {
+    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        const mesh::VertexId* v = m.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            if (mesh::facet_tet(m.neighbor(t, f)) < t) continue;  // each face once
+            const Triangle k = sorted(v[mesh::kFaceVertices[f][0]], v[mesh::kFaceVertices[f][1]],
+                                      v[mesh::kFaceVertices[f][2]]);
+            if (k[2] != mesh::kGhostVertex) visit(t, f, k);  // the ghost is the largest id
+        }
+    }
+}
+
 }  // namespace
 
 ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<std::int32_t> labels)
@@ -100,22 +117,14 @@ std::size_t ConstraintFaces::vertex_count() const {
 
 std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces) {
     std::vector<char> present(faces.size(), 0);
-    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t)) continue;
-        for (int f = 0; f < 4; ++f) {
-            const mesh::FacetRef across = m.neighbor(t, f);
-            if (mesh::facet_tet(across) < t) continue;  // each face once
-            const mesh::VertexId* v = m.vertices(t);
-            const mesh::VertexId a = v[mesh::kFaceVertices[f][0]], b = v[mesh::kFaceVertices[f][1]],
-                                 c = v[mesh::kFaceVertices[f][2]];
-            if (a == mesh::kGhostVertex || b == mesh::kGhostVertex || c == mesh::kGhostVertex) continue;
-            const std::size_t i = faces.find(a, b, c);
-            if (i == ConstraintFaces::npos) continue;
-            present[i] = 1;
-            m.set_constrained(t, f, true);
-            m.set_constrained(mesh::facet_tet(across), mesh::facet_face(across), true);
-        }
-    }
+    for_each_finite_face(m, [&](mesh::TetId t, int f, const Triangle& k) {
+        const std::size_t i = faces.find(k[0], k[1], k[2]);
+        if (i == ConstraintFaces::npos) return;
+        present[i] = 1;
+        const mesh::FacetRef across = m.neighbor(t, f);
+        m.set_constrained(t, f, true);
+        m.set_constrained(mesh::facet_tet(across), mesh::facet_face(across), true);
+    });
     std::vector<std::size_t> missing;
     for (std::size_t i = 0; i < present.size(); ++i)
         if (!present[i]) missing.push_back(i);
@@ -146,18 +155,10 @@ std::vector<char> faces_of_mesh(const mesh::TetMesh& m, const std::vector<Triang
         const Triangle k = sorted(tris[i][0], tris[i][1], tris[i][2]);
         entries[fill[k[0]]++] = Filed{k[1], k[2], static_cast<std::uint32_t>(i)};
     }
-    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t)) continue;
-        for (int f = 0; f < 4; ++f) {
-            if (mesh::facet_tet(m.neighbor(t, f)) < t) continue;  // each face once
-            const mesh::VertexId* v = m.vertices(t);
-            const Triangle k = sorted(v[mesh::kFaceVertices[f][0]], v[mesh::kFaceVertices[f][1]],
-                                      v[mesh::kFaceVertices[f][2]]);
-            if (k[2] == mesh::kGhostVertex) continue;  // the largest id, when there is one
-            for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
-                if (entries[e].middle == k[1] && entries[e].largest == k[2]) is_face[entries[e].index] = 1;
-        }
-    }
+    for_each_finite_face(m, [&](mesh::TetId, int, const Triangle& k) {
+        for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
+            if (entries[e].middle == k[1] && entries[e].largest == k[2]) is_face[entries[e].index] = 1;
+    });
     return is_face;
 }
 

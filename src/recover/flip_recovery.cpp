@@ -531,14 +531,15 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
             progress = false;
             std::vector<std::size_t> still;
             for (std::size_t i : left) {
-                const long allowance_left = search.allowance - spent;
-                const bool allowed = search.allowance == 0 || allowance_left > 0;
-                if (!allowed || (pass > 0 && !flips.worth_retrying(i))) {
+                const bool round_spent = search.allowance != 0 && spent >= search.allowance;
+                if (round_spent || (pass > 0 && !flips.worth_retrying(i))) {
                     still.push_back(i);
                     continue;
                 }
-                const long allowed_budget = std::min<long>(pass_budget, allowance_left);
-                this_face.budget = search.allowance == 0 ? pass_budget : static_cast<int>(allowed_budget);
+                // The pass's budget, or what the round's allowance has left.
+                this_face.budget = search.allowance == 0
+                                       ? pass_budget
+                                       : static_cast<int>(std::min<long>(pass_budget, search.allowance - spent));
                 flips.set_search(this_face);
                 const bool recovered = flips.attempt(i, search.rollback);
                 spent += this_face.budget - flips.budget_left();
