@@ -732,6 +732,38 @@ TEST_CASE("refine: what each dihedral flip makes beats what it replaced") {
     }
 }
 
+TEST_CASE("refine: a later call of the dihedral flips starts from what changed since") {
+    // refine_mesh calls improve_dihedrals_by_flips again after each round
+    // of points moved for the angle; the first sweep of such a call looks
+    // only at tetrahedra that changed (or have a face neighbour that
+    // changed) in pass `since` or after it. The 48-gon coin refined
+    // without these flips has tetrahedra they flip (tests above).
+    cbr::refine::RefineOptions without;
+    without.dihedral_flips = false;
+    RefinedAlone refined, again;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, refined);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, again);  // the same mesh (deterministic)
+    cbr::refine::RefineContext& c = *refined.c;
+    const cbr::mesh::TetMesh& m = refined.r.d.mesh();
+    // A fresh context: nothing changed in pass 1 or after, so nothing is looked at.
+    c.start_pass();
+    const cbr::refine::DihedralFlips none = cbr::refine::improve_dihedrals_by_flips(c, 5.0, 0.1, 8, nullptr, c.pass());
+    CHECK(none.flips == 0);
+    CHECK(none.last_sweep == c.pass());
+    // Every tetrahedron reshaped in pass `now`: the call does what a first
+    // call (since = 0) does on the same mesh.
+    c.start_pass();
+    const std::uint32_t now = c.pass();
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (c.in_domain(t)) c.touch(t);
+    const cbr::refine::DihedralFlips touched = cbr::refine::improve_dihedrals_by_flips(c, 5.0, 0.1, 8, nullptr, now);
+    const cbr::refine::DihedralFlips first = cbr::refine::improve_dihedrals_by_flips(*again.c, 5.0, 0.1, 8);
+    MESSAGE("flips " << touched.flips << " from pass " << now << ", " << first.flips << " in a first call");
+    CHECK(touched.flips > 0);
+    CHECK(touched.flips == first.flips);
+    REQUIRE(cbr::mesh::check_mesh(m).ok());
+}
+
 TEST_CASE("refine: a point moved for the smallest dihedral angle keeps its ball's radius ratios") {
     // smooth_for_dihedrals' moves, replayed from its log in order on the
     // mesh as it was: each keeps v's ball valid (exact) and within the

@@ -353,20 +353,25 @@ std::size_t improve_by_flips(RefineContext& c, double threshold) {
 }
 
 DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                         int max_sweeps, std::vector<TetChange>* log) {
+                                         int max_sweeps, std::vector<TetChange>* log, std::uint32_t since) {
     // The radius ratio first: cheaper, and most tetrahedra are above the
     // bound it puts on the angle.
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
     DihedralFlips flips;
     for (int k = 0; k < max_sweeps; ++k) {
         // The first sweep looks at every tetrahedron (none was tried for
-        // its angles before), the next ones where the last one flipped.
+        // its angles before) or, after an earlier call, at what changed
+        // since its last sweep (the points moved for the angle in between;
+        // the rest was tried and failed), the next ones where the last one
+        // flipped.
         c.start_pass();
+        flips.last_sweep = c.pass();
         Flipper flipper(c, kMinDihedral, keep_radius_ratio);
         flipper.after_another = c.options.edge_removal_after_another;
         flipper.log = log;
         const std::size_t done = sweep(c, flipper, [&](TetId t) {
-            return (k == 0 || c.changed_near(t)) && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
+            const bool near_change = k > 0 ? c.changed_near(t) : since == 0 || c.changed_near_since(t, since);
+            return near_change && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
         });
         flips.flips += done + flipper.after_another_done;  // a pair is two removals
         flips.after_another += flipper.after_another_done;

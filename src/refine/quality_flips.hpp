@@ -27,8 +27,10 @@ std::size_t improve_by_flips(RefineContext& c, double threshold);
 // The same flips judged by the smallest dihedral angle instead (Table II's
 // minimum dihedral angle, which the radius ratio does not always follow):
 // sweeps over the tetrahedra with a dihedral angle below `below_degrees`,
-// the first over all of them, the next over those near the last sweep's
-// flips, at most `max_sweeps`; returns the number of flips done. Each
+// the first over all of them (with `since` > 0: over those that changed,
+// or have a face neighbour that changed, in pass `since` or after it), the
+// next over those near the last sweep's flips, at most `max_sweeps`;
+// returns the number of flips done and the pass of the last sweep. Each
 // flip raises the smallest angle among the tetrahedra it replaces, so
 // the mesh's smallest angle never falls; and it makes no tetrahedron whose
 // radius ratio is below both `keep_radius_ratio` and the worst of those
@@ -40,9 +42,13 @@ std::size_t improve_by_flips(RefineContext& c, double threshold);
 struct DihedralFlips {
     std::size_t flips = 0;          // flips done, each removal of a pair counted
     std::size_t after_another = 0;  // of them, pairs of edge removals
+    // The pass of the last sweep (RefineContext::pass): what changed in it
+    // or after it is what a later call needs to look at (its `since`).
+    std::uint32_t last_sweep = 0;
 };
 // `log`, for tests, gets each flip (a pair as one).
 DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
-                                         int max_sweeps, std::vector<TetChange>* log = nullptr);
+                                         int max_sweeps, std::vector<TetChange>* log = nullptr,
+                                         std::uint32_t since = 0);
 
 }  // namespace cbr::refine

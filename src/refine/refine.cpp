@@ -97,11 +97,20 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
     if (options.flips && options.dihedral_flips) {
+        // After the first call, each looks first at what changed since the
+        // last sweep of the one before (the moves in between, and that
+        // sweep's own flips). thingiverse-feeder-body: the first sweeps of
+        // the three later calls tried 4,589, 4,096 and 3,908 tetrahedra
+        // under the angle, now 2,656, 1,824 and 1,323 (0.36 -> 0.25 s);
+        // on the 37 shared surfaces only the feeder body (4 more
+        // tetrahedra) and the guide arm (2 more under q = 0.1) changed.
+        std::uint32_t flips_since = 0;
         const auto flips_for_angles = [&] {
-            const DihedralFlips done =
-                improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold, kDihedralFlipSweeps);
+            const DihedralFlips done = improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold,
+                                                                  kDihedralFlipSweeps, nullptr, flips_since);
             stats.flips += done.flips;
             stats.removal_pairs += done.after_another;
+            flips_since = done.last_sweep;
         };
         flips_for_angles();
         // Then the points moved for the angle, which opens flips again

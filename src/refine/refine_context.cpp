@@ -75,6 +75,13 @@ bool RefineContext::changed_near(mesh::TetId t) const {
     return false;
 }
 
+bool RefineContext::changed_near_since(mesh::TetId t, std::uint32_t pass) const {
+    if (changed_since(t, pass)) return true;
+    for (int f = 0; f < 4; ++f)
+        if (changed_since(mesh::facet_tet(m.neighbor(t, f)), pass)) return true;
+    return false;
+}
+
 void RefineContext::touch(mesh::TetId t) {
     if (t >= stamp_.size()) stamp_.resize(std::max<std::size_t>(t + 1, stamp_.size() * 3 / 2), 0);
     stamp_[t] = pass_;

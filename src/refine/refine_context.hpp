@@ -74,6 +74,9 @@ public:
     // or after it.
     std::uint32_t pass() const { return pass_; }
     bool changed_since(mesh::TetId t, std::uint32_t pass) const { return (t < stamp_.size() ? stamp_[t] : 0) >= pass; }
+    // t or a tetrahedron across one of its faces changed in pass `pass` or
+    // after it.
+    bool changed_near_since(mesh::TetId t, std::uint32_t pass) const;
 
     // Renumbers the tetrahedra of m along the Hilbert curve through their
     // centroids (delaunay::hilbert_order; the regions and change stamps
