@@ -1613,10 +1613,10 @@ namespace {
 
 // Flip recovery of `xyz, tris` with every round, the nested removals in
 // ring order and the deepest round as `deepest_budget` says (0: its two
-// stages); the faces left, and in `spent` the removals of each round.
+// stages); the faces left, and in `spent` what each round did.
 std::vector<std::size_t> flips_in_ring_order(const std::string& name, const std::vector<double>& xyz,
                                              const std::vector<std::int64_t>& tris, int deepest_budget,
-                                             std::vector<long>& spent) {
+                                             std::vector<cbr::recover::FlipRoundReport>& spent) {
     INFO(name);
     Case c;
     build(c, xyz, tris);
@@ -1626,7 +1626,9 @@ std::vector<std::size_t> flips_in_ring_order(const std::string& name, const std:
         cbr::recover::FlipDirection::kAsGiven, cbr::recover::NestedOrder::kRing, &spent);
     require_valid(c.m(), name.c_str());
     std::string rounds;
-    for (long s : spent) rounds += " " + std::to_string(s);
+    for (const cbr::recover::FlipRoundReport& r : spent)
+        rounds += " " + std::to_string(r.removals) + " (" + std::to_string(r.attempts) + " attempts at " +
+                  std::to_string(r.faces) + " faces)";
     MESSAGE(name << ", deepest budget " << deepest_budget << ": " << missing.size() << " missing, " << left.size()
                  << " left; removals per round" << rounds);
     return left;
@@ -1638,13 +1640,13 @@ TEST_CASE("flip recovery: the deepest round's second stage, within its allowance
     // flip_recovery.cpp, kSearches: the deepest round gives every face
     // 1,500 edge removals, then the faces left 40,000 each while the
     // stage has spent less than 80,000 in all.
-    std::vector<long> spent;
+    std::vector<cbr::recover::FlipRoundReport> spent;
     // Faces that need more than the first stage: the Chazelle polyhedron
     // in ring order, whose deepest round recovers 6 faces (above).
     const cbr::test::Polyhedron chazelle = cbr::test::chazelle_polyhedron();
     CHECK(flips_in_ring_order("chazelle", chazelle.xyz, chazelle.tris, 0, spent).empty());
     REQUIRE(spent.size() == 5);
-    CHECK(spent[4] > 0);  // the second stage ran, and recovered what the first left
+    CHECK(spent[4].removals > 0);  // the second stage ran, and recovered what the first left
     CHECK_FALSE(flips_in_ring_order("chazelle", chazelle.xyz, chazelle.tris, 1500, spent).empty());
     REQUIRE(spent.size() == 4);  // one deepest round in place of the two stages
     // Faces that no search recovers spend their whole budget: a turned
@@ -1654,11 +1656,16 @@ TEST_CASE("flip recovery: the deepest round's second stage, within its allowance
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-96-fan-caps-h1-r22.off", prism));
     const std::size_t left_single = flips_in_ring_order("prism", prism.xyz, prism.tris, 40000, spent).size();
     REQUIRE(spent.size() == 4);
-    CHECK(spent[3] > 2 * 40000);
+    CHECK(spent[3].removals > 2 * 40000);
     const std::size_t left_staged = flips_in_ring_order("prism", prism.xyz, prism.tris, 0, spent).size();
     REQUIRE(spent.size() == 5);
-    CHECK(spent[4] > 0);
-    CHECK(spent[4] <= 2 * 40000);
+    CHECK(spent[4].removals > 0);
+    CHECK(spent[4].removals <= 2 * 40000);
     CHECK(left_staged > 0);
+    // Once the allowance is spent, the faces left are not attempted at
+    // all (with no budget a face could still be attempted, and its 2-3
+    // flips, which spend none, would still change the mesh).
+    CHECK(spent[4].attempts < spent[4].faces);
+    CHECK(spent[4].attempts >= 2);  // each face it cannot recover spends 40,000
     MESSAGE("prism: " << left_single << " faces left with one deepest round, " << left_staged << " with two stages");
 }

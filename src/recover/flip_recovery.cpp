@@ -511,7 +511,7 @@ std::vector<Search> rounds_of(FlipRounds rounds, int deepest_budget) {
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo,
                                           FlipRounds rounds, int deepest_budget, FlipDirection direction,
-                                          NestedOrder nested, std::vector<long>* spent_per_round) {
+                                          NestedOrder nested, std::vector<FlipRoundReport>* per_round) {
     FlipRecovery flips(m, faces, memo, direction, nested);
     std::vector<std::size_t> left = missing;
     // A face recovered later can unblock one tried earlier: each round
@@ -521,9 +521,11 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
     // on every pass; point splitting recovers them anyway). Each harder
     // round only sees the faces the previous ones left, whose meshes it
     // would otherwise disturb before their own turn.
-    if (spent_per_round) spent_per_round->clear();
+    if (per_round) per_round->clear();
     for (const Search& search : rounds_of(rounds, deepest_budget)) {
-        long spent = 0;
+        FlipRoundReport report;
+        report.faces = left.size();
+        long& spent = report.removals;
         bool progress = true;
         for (int pass = 0; pass < kMaxPasses && progress && !left.empty(); ++pass) {
             Search this_face = search;
@@ -541,6 +543,7 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
                                        ? pass_budget
                                        : static_cast<int>(std::min<long>(pass_budget, search.allowance - spent));
                 flips.set_search(this_face);
+                ++report.attempts;
                 const bool recovered = flips.attempt(i, search.rollback);
                 spent += this_face.budget - flips.budget_left();
                 if (recovered) progress = true;
@@ -548,7 +551,7 @@ std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFace
             }
             left.swap(still);
         }
-        if (spent_per_round) spent_per_round->push_back(spent);
+        if (per_round) per_round->push_back(report);
     }
     return left;
 }

@@ -59,14 +59,20 @@ enum class NestedOrder { kBlockingFirst, kRing };
 // that many removals a face in its first pass, with no limit on the
 // round. The retries after a failure take the second (recovery.hpp,
 // kRetryFlipBudgets), and tests vary it to reach the other mesh states
-// that flips can leave to the later steps. `spent_per_round`, when given:
-// the edge removals each round spent, every face and pass together (a
-// search known to fail counts what it spent when it ran).
+// that flips can leave to the later steps. `per_round`, when given: what
+// each round did (FlipRoundReport).
+struct FlipRoundReport {
+    std::size_t faces = 0;     // faces still missing when the round began
+    std::size_t attempts = 0;  // attempts at a face, every pass together
+    // Edge removals spent, every face and pass together (a search known
+    // to fail counts what it spent when it ran).
+    long removals = 0;
+};
 std::vector<std::size_t> recover_by_flips(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing, FlipMemo memo = FlipMemo::kOn,
                                           FlipRounds rounds = FlipRounds::kAll, int deepest_budget = 0,
                                           FlipDirection direction = FlipDirection::kAsGiven,
                                           NestedOrder nested = NestedOrder::kBlockingFirst,
-                                          std::vector<long>* spent_per_round = nullptr);
+                                          std::vector<FlipRoundReport>* per_round = nullptr);
 
 }  // namespace cbr::recover
