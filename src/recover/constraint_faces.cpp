@@ -22,6 +22,26 @@ std::vector<std::uint32_t> bucket_starts(std::size_t n, ForEachKey for_each_key)
     return start;
 }
 
+// Files the triangles of `tris` that `keep` accepts under their smallest id
+// (below n): entries [first[x], first[x + 1]) hold (middle, largest, index)
+// of those whose smallest id is x. Entry is ConstraintFaces::Entry or a
+// struct with the same members.
+template <class Entry, class Keep>
+void file_by_smallest(std::size_t n, const std::vector<Triangle>& tris, Keep keep, std::vector<std::uint32_t>& first,
+                      std::vector<Entry>& entries) {
+    first = bucket_starts(n, [&](auto file) {
+        for (const Triangle& t : tris)
+            if (keep(t)) file(std::min({t[0], t[1], t[2]}));
+    });
+    entries.resize(first[n]);
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+        if (!keep(tris[i])) continue;
+        const Triangle k = sorted(tris[i][0], tris[i][1], tris[i][2]);
+        entries[fill[k[0]]++] = Entry{k[1], k[2], static_cast<std::uint32_t>(i)};
+    }
+}
+
 // Calls visit(t, f, k) once for every face of m without the ghost vertex:
 // face f of live tetrahedron t, the lower slot of its two, k its vertices
 // in increasing order.
@@ -46,15 +66,7 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
     labels_.resize(triangles_.size(), 0);
     std::size_t n = 0;
     for (const Triangle& t : triangles_) n = std::max<std::size_t>(n, std::max({t[0], t[1], t[2]}) + std::size_t{1});
-    first_ = bucket_starts(n, [&](auto file) {
-        for (const Triangle& t : triangles_) file(std::min({t[0], t[1], t[2]}));
-    });
-    entries_.resize(triangles_.size());
-    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-        const Triangle k = sorted(triangles_[i][0], triangles_[i][1], triangles_[i][2]);
-        entries_[fill[k[0]]++] = Entry{k[1], k[2], static_cast<std::uint32_t>(i)};
-    }
+    file_by_smallest(n, triangles_, [](const Triangle&) { return true; }, first_, entries_);
     index_edges(n);
 }
 
@@ -140,21 +152,13 @@ std::vector<char> faces_of_mesh(const mesh::TetMesh& m, const std::vector<Triang
     const auto own = [n](const Triangle& t) {
         return t[0] < n && t[1] < n && t[2] < n && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
     };
-    const std::vector<std::uint32_t> first = bucket_starts(n, [&](auto file) {
-        for (const Triangle& t : tris)
-            if (own(t)) file(std::min({t[0], t[1], t[2]}));
-    });
     struct Filed {
         mesh::VertexId middle, largest;
         std::uint32_t index;
     };
-    std::vector<Filed> entries(first[n]);
-    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-        if (!own(tris[i])) continue;
-        const Triangle k = sorted(tris[i][0], tris[i][1], tris[i][2]);
-        entries[fill[k[0]]++] = Filed{k[1], k[2], static_cast<std::uint32_t>(i)};
-    }
+    std::vector<std::uint32_t> first;
+    std::vector<Filed> entries;
+    file_by_smallest(n, tris, own, first, entries);
     for_each_finite_face(m, [&](mesh::TetId, int, const Triangle& k) {
         for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
             if (entries[e].middle == k[1] && entries[e].largest == k[2]) is_face[entries[e].index] = 1;

@@ -370,7 +370,7 @@ DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees,
         flipper.after_another = c.options.edge_removal_after_another;
         flipper.log = log;
         const std::size_t done = sweep(c, flipper, [&](TetId t) {
-            const bool near_change = k > 0 ? c.changed_near(t) : since == 0 || c.changed_near_since(t, since);
+            const bool near_change = k > 0 ? c.changed_near(t) : c.changed_near_since(t, since);  // since 0: all
             return near_change && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
         });
         flips.flips += done + flipper.after_another_done;  // a pair is two removals

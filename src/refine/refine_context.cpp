@@ -68,13 +68,6 @@ void RefineContext::set_region(mesh::TetId t, std::int32_t r) {
     touch(t);
 }
 
-bool RefineContext::changed_near(mesh::TetId t) const {
-    if (changed(t)) return true;
-    for (int f = 0; f < 4; ++f)
-        if (changed(mesh::facet_tet(m.neighbor(t, f)))) return true;
-    return false;
-}
-
 bool RefineContext::changed_near_since(mesh::TetId t, std::uint32_t pass) const {
     if (changed_since(t, pass)) return true;
     for (int f = 0; f < 4; ++f)

@@ -65,11 +65,6 @@ public:
     // and would fail again.
     void start_pass() { ++pass_; }
     void touch(mesh::TetId t);
-    // Created or reshaped during the previous pass or this one (every slot
-    // before the second pass).
-    bool changed(mesh::TetId t) const { return (t < stamp_.size() ? stamp_[t] : 0) + 1 >= pass_; }
-    // t or a tetrahedron across one of its faces changed.
-    bool changed_near(mesh::TetId t) const;
     // The current pass, and whether t was created or reshaped in that pass
     // or after it.
     std::uint32_t pass() const { return pass_; }
@@ -77,6 +72,10 @@ public:
     // t or a tetrahedron across one of its faces changed in pass `pass` or
     // after it.
     bool changed_near_since(mesh::TetId t, std::uint32_t pass) const;
+    // Created or reshaped during the previous pass or this one (every slot
+    // before the second pass), and the same for t or a face neighbour.
+    bool changed(mesh::TetId t) const { return changed_since(t, previous_pass()); }
+    bool changed_near(mesh::TetId t) const { return changed_near_since(t, previous_pass()); }
 
     // Renumbers the tetrahedra of m along the Hilbert curve through their
     // centroids (delaunay::hilbert_order; the regions and change stamps
@@ -90,6 +89,8 @@ public:
     const std::vector<std::int32_t>& regions() const { return region_; }
 
 private:
+    std::uint32_t previous_pass() const { return pass_ > 0 ? pass_ - 1 : 0; }
+
     const recover::ConstraintFaces& faces_;  // outlives the context (is_surface_edge)
     std::vector<std::int32_t> region_;
     std::vector<std::uint32_t> stamp_;  // per slot: the pass that last created or reshaped it
