@@ -43,6 +43,7 @@
 #include "recover/constraint_faces.hpp"
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
+#include "refine/angle_phase.hpp"
 #include "refine/compass_search.hpp"
 #include "refine/deepest_point.hpp"
 #include "refine/quality_flips.hpp"
@@ -762,6 +763,47 @@ TEST_CASE("refine: a later call of the dihedral flips starts from what changed s
     CHECK(touched.flips > 0);
     CHECK(touched.flips == first.flips);
     REQUIRE(cbr::mesh::check_mesh(m).ok());
+}
+
+TEST_CASE("refine: the angle phase starts each later dihedral flips call from the last sweep before it") {
+    // improve_angles (refine_mesh's angle phase): the first call of the
+    // dihedral flips looks at every tetrahedron (since = 0); each later
+    // one, after a round of points moved for the angle, first at what
+    // changed since the last sweep of the call before it. On the 48-gon
+    // coin refined without the phase, the moves run and call the flips
+    // again.
+    cbr::refine::RefineOptions without;
+    without.dihedral_flips = false;
+    RefinedAlone refined;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, refined);
+    cbr::refine::RefineStats stats;
+    std::vector<cbr::refine::DihedralCall> calls;
+    cbr::refine::improve_angles(*refined.c, cbr::refine::RefineOptions{}, 0.1, stats, &calls);
+    MESSAGE(calls.size() << " calls, " << stats.dihedral_moves << " moves, " << stats.flips << " flips");
+    REQUIRE(calls.size() >= 2);
+    CHECK(stats.dihedral_moves > 0);
+    CHECK(calls[0].since == 0);
+    for (std::size_t k = 1; k < calls.size(); ++k) {
+        INFO("call " << k);
+        CHECK(calls[k].since > 0);
+        CHECK(calls[k].since == calls[k - 1].last_sweep);
+        CHECK(calls[k].last_sweep >= calls[k].since);
+    }
+    REQUIRE(cbr::mesh::check_mesh(refined.r.d.mesh()).ok());
+
+    // Without the moves, one call; without the dihedral flips, none.
+    RefinedAlone once, none;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, once);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, none);
+    cbr::refine::RefineOptions no_moves, no_flips;
+    no_moves.dihedral_smoothing = false;
+    no_flips.dihedral_flips = false;
+    calls.clear();
+    cbr::refine::improve_angles(*once.c, no_moves, 0.1, stats, &calls);
+    CHECK(calls.size() == 1);
+    calls.clear();
+    cbr::refine::improve_angles(*none.c, no_flips, 0.1, stats, &calls);
+    CHECK(calls.empty());
 }
 
 TEST_CASE("refine: a point moved for the smallest dihedral angle keeps its ball's radius ratios") {

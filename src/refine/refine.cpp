@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "mesh/vertex_compaction.hpp"
+#include "refine/angle_phase.hpp"
 #include "refine/field_points.hpp"
 #include "refine/quality_stats.hpp"
 #include "refine/quality_flips.hpp"
@@ -22,17 +23,6 @@ constexpr double kFlipThreshold = 0.7;
 // Tetrahedra below this radius ratio that flips and smoothing leave get a
 // point with a chosen cavity (sliver_removal.hpp); Table II counts them bad.
 constexpr double kSliverThreshold = 0.1;
-// After the passes, flips for the smallest dihedral angles (Table II's
-// minimum, which radius-ratio flips and smoothing leave where they cannot
-// raise the radius ratio): the tetrahedra below this angle, in at most
-// this many sweeps.
-constexpr double kDihedralFlipsBelow = 5.0;
-constexpr int kDihedralFlipSweeps = 8;
-// Rounds of points moved for the angle, each followed by those flips:
-// later rounds start where the earlier moves and flips left the balls
-// (on the 37 shared surfaces, 3 rounds instead of 1: 187 fewer
-// tetrahedra under q = 0.1; thingiverse-mouth 3.4 -> 3.9 deg).
-constexpr int kDihedralSmoothingRounds = 3;
 // Last, tetrahedra of four input points below this angle get a point
 // judged by the angle (rescue_small_angles). Each such point roughly
 // doubles the tetrahedra under q = 0.1 of its cavity (the flat patch caps
@@ -96,41 +86,7 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         stats.sliver_points += slivers;
         if (flips == 0 && moves == 0 && !steiner_progress && slivers == 0) break;
     }
-    if (options.flips && options.dihedral_flips) {
-        // After the first call, each looks first at what changed since the
-        // last sweep of the one before (the moves in between, and that
-        // sweep's own flips). thingiverse-feeder-body: the first sweeps of
-        // the three later calls tried 4,589, 4,096 and 3,908 tetrahedra
-        // under the angle, now 2,656, 1,824 and 1,323 (0.36 -> 0.25 s);
-        // on the 37 shared surfaces only the feeder body (4 more
-        // tetrahedra) and the guide arm (2 more under q = 0.1) changed.
-        std::uint32_t flips_since = 0;
-        const auto flips_for_angles = [&] {
-            const DihedralFlips done = improve_dihedrals_by_flips(c, kDihedralFlipsBelow, kSliverThreshold,
-                                                                  kDihedralFlipSweeps, nullptr, flips_since);
-            stats.flips += done.flips;
-            stats.removal_pairs += done.after_another;
-            flips_since = done.last_sweep;
-        };
-        flips_for_angles();
-        // Then the points moved for the angle, which opens flips again
-        // (everywhere: a pair of removals may reach past the moved
-        // points' neighbours; thingiverse-chain-link keeps a flat
-        // tetrahedron of input points at 1.5e-4 deg when the flips look
-        // only next to them), and the flips open moves again, for at most
-        // kDihedralSmoothingRounds rounds.
-        std::uint32_t since = 0;  // the first round tries every ball; the later ones those changed since
-        for (int round = 0; round < kDihedralSmoothingRounds && options.dihedral_smoothing; ++round) {
-            c.start_pass();
-            const std::uint32_t now = c.pass();
-            const std::size_t moved = smooth_for_dihedrals(c, kDihedralFlipsBelow, kSliverThreshold, nullptr, since);
-            since = now;
-            stats.smoothed += moved;
-            stats.dihedral_moves += moved;
-            if (moved == 0) break;
-            flips_for_angles();
-        }
-    }
+    improve_angles(c, options, kSliverThreshold, stats);  // the smallest dihedral angles
     if (options.slivers) {
         const std::size_t rescued = rescue_flat_slivers(c, kSliverThreshold, stats);
         const std::size_t for_angles =
