@@ -1466,6 +1466,27 @@ TEST_CASE("key table: finds what it holds through growth") {
     CHECK(*table.find(7) == -1);
 }
 
+TEST_CASE("key table: clear empties it, and it fills and grows again") {
+    KeyTable<int> table;
+    for (std::uint64_t k = 0; k < 3000; ++k) table[k * 7919u + 1] = static_cast<int>(k) + 1;
+    table.clear();
+    CHECK(table.size() == 0);
+    for (std::uint64_t k = 0; k < 3000; ++k) REQUIRE(table.find(k * 7919u + 1) == nullptr);
+    // A key held before the clear comes back value-initialised.
+    CHECK(table[1] == 0);
+    CHECK(table.size() == 1);
+    // Past the old size, through growth: only what was put in since.
+    for (std::uint64_t k = 0; k < 6000; ++k) table[k * 104729u + 3] = -static_cast<int>(k);
+    CHECK(table.size() == 6001);
+    for (std::uint64_t k = 0; k < 6000; ++k) {
+        const int* v = table.find(k * 104729u + 3);
+        REQUIRE(v != nullptr);
+        CHECK(*v == -static_cast<int>(k));
+    }
+    CHECK(table.find(7919u + 1) == nullptr);  // the second key before the clear
+    CHECK(*table.find(1) == 0);
+}
+
 TEST_CASE("failed searches: known only in the state they failed in") {
     cbr::recover::FailedSearches memo;
     memo.set_state(3);

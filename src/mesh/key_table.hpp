@@ -3,7 +3,8 @@
 // open addressing with linear probing in a power-of-two array, so that a
 // lookup is one multiply-shift and, mostly, one cache line; std::unordered_map
 // spent most of its time there in an integer division and a chain of
-// scattered nodes. Entries are never erased.
+// scattered nodes. Entries are never erased one by one; clear() empties
+// the table in O(1) and keeps its storage.
 #pragma once
 
 #include <cstddef>
@@ -20,7 +21,7 @@ public:
         if (slots_.empty()) return nullptr;
         for (std::size_t i = home(key);; i = (i + 1) & mask()) {
             Slot& s = slots_[i];
-            if (!s.used) return nullptr;
+            if (s.stamp != stamp_) return nullptr;
             if (s.key == key) return &s.value;
         }
     }
@@ -31,8 +32,8 @@ public:
         if (2 * (size_ + 1) > slots_.size()) grow();
         for (std::size_t i = home(key);; i = (i + 1) & mask()) {
             Slot& s = slots_[i];
-            if (!s.used) {
-                s.used = true;
+            if (s.stamp != stamp_) {
+                s.stamp = stamp_;
                 s.key = key;
                 s.value = Value{};
                 ++size_;
@@ -44,11 +45,22 @@ public:
 
     std::size_t size() const { return size_; }
 
+    // Empties the table and keeps its storage: a slot is used only when it
+    // holds the current stamp, so a table emptied and filled again and
+    // again (one per flip sweep) is neither cleared slot by slot nor grown
+    // again from empty each time.
+    void clear() {
+        size_ = 0;
+        if (++stamp_ != 0) return;
+        for (Slot& s : slots_) s.stamp = 0;  // the stamps wrapped around: once in 2^32 clears
+        stamp_ = 1;
+    }
+
 private:
     struct Slot {
         std::uint64_t key = 0;
         Value value{};
-        bool used = false;
+        std::uint32_t stamp = 0;  // used when equal to the table's stamp_
     };
 
     std::size_t mask() const { return slots_.size() - 1; }
@@ -66,12 +78,13 @@ private:
         for (std::size_t c = capacity; c > 1; c >>= 1) --shift_;
         size_ = 0;
         for (Slot& s : old)
-            if (s.used) (*this)[s.key] = s.value;
+            if (s.stamp == stamp_) (*this)[s.key] = s.value;
     }
 
     std::vector<Slot> slots_;
     std::size_t size_ = 0;
     int shift_ = 64;
+    std::uint32_t stamp_ = 1;  // never 0, the stamp of a slot never used
 };
 
 }  // namespace cbr::mesh

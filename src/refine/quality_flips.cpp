@@ -48,8 +48,9 @@ public:
     // ratio is below both this and the worst of those it replaces (0: no
     // condition).
     Flipper(RefineContext& c, const FlipMeasure& measure, double radius_ratio_floor = 0)
-        : c_(c), m_(c.m), measure_(measure), radius_ratio_floor_(radius_ratio_floor) {
+        : c_(c), m_(c.m), measure_(measure), radius_ratio_floor_(radius_ratio_floor), refused_(c.refused_edges) {
         objective_.measure = measure.oriented;
+        refused_.clear();
     }
     bool try_edge(TetId t, VertexId u, VertexId v);
     bool remove_edge(TetId t, VertexId u, VertexId v);
@@ -135,8 +136,9 @@ private:
     // changed since (nothing moves during a sweep): the same shell would be
     // refused again, so it is not tried again from the other tetrahedra
     // around it. (An open-addressing table: std::unordered_set's division
-    // and scattered nodes were half the sweep's own time on igea.)
-    mesh::KeyTable<bool> refused_;
+    // and scattered nodes were half the sweep's own time on igea.) The
+    // context's, emptied here.
+    mesh::KeyTable<bool>& refused_;
     // remove_edge's scratch, kept across calls.
     mesh::Shell shell_;
     std::vector<mesh::RingTriangle> triangles_;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
 #include "refine/refine_options.hpp"
@@ -34,6 +35,11 @@ public:
     mesh::TetMesh& m;
     const RefineOptions options;
     SizingField size;
+    // The quality flips' edges refused in a sweep (quality_flips.cpp),
+    // emptied by each sweep: kept here so that its storage, millions of
+    // edges on large meshes, is reused rather than grown again from empty
+    // by every sweep (igea: that growth was 3% of the mesh generation).
+    mesh::KeyTable<bool> refused_edges;
 
     // Region of slot t (0 outside, or for slots not assigned).
     std::int32_t region(mesh::TetId t) const { return t < region_.size() ? region_[t] : 0; }
