@@ -269,7 +269,7 @@ TEST_CASE("after a failed first attempt the enclosing box comes before the other
 }
 
 TEST_CASE("after the enclosing box, the flips in ring order") {
-    // tests/data/recover/openscad-example012-r11.off, a turned CSG part:
+    // tests/data/recover/csg-x-r19.off, a turned CSG part:
     // without the deepest flip round (so that the retries with other
     // budgets are out), the first attempt (the flips take the blocking ring
     // vertices first) and the enclosing box fail; from the flips in ring
@@ -278,7 +278,7 @@ TEST_CASE("after the enclosing box, the flips in ring order") {
     // the core, with the deepest round). So the result has no box corner:
     // every Steiner point, if any, is inside the points' bounding box.
     cbr::test::OffSurface p;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/openscad-example012-r11.off", p));
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/csg-x-r19.off", p));
     const auto n = static_cast<std::int64_t>(p.xyz.size() / 3);
     Handle h;
     REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_RECOVERY_DEEP_FLIPS, 0) == CBR_OK);

@@ -1295,6 +1295,32 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with denser unblocking
     CHECK(recover_checked(s, in_ring_order()).steiner_generated > 0);
 }
 
+TEST_CASE("recover_faces: a turned CAD plate recovers with the dense unblocking points kept where they do not cut") {
+    // tests/data/recover/guide-arm-r41.off: the shared
+    // thingiverse-feeder-guide-arm turned in space (rotate_surface.py seed
+    // 41). Six of its triangles lie in a plate of 444 input triangles that
+    // the turn makes nearly coplanar. Every earlier unblocking try turns
+    // its points away there (none makes a missing edge meet fewer
+    // tetrahedra), and conforming recovery then breaks a face's disk in
+    // every order of the faces (TetGen recovers the copy). recovery.cpp's
+    // last try keeps the dense points each target first gets inserted
+    // (UnblockingOptions::keep_first).
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/guide-arm-r41.off", s));
+    {
+        cbr::recover::RecoveryOptions without = {};
+        without.unblocking_tries = cbr::recover::RecoveryOptions{}.unblocking_tries - 1;
+        const cbr::recover::RecoveryResult r = recover_fresh(s, without);
+        CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the last try
+        CHECK_FALSE(r.unrecovered.empty());
+        CHECK(r.why.find("the sub-faces of a face do not form a disk") != std::string::npos);
+    }
+    const cbr::recover::RecoveryStats stats = recover_checked(s, {});
+    MESSAGE("Steiner points generated " << stats.steiner_generated << ", remaining " << stats.steiner_remaining
+                                        << ", conforming points " << stats.conforming_points);
+    CHECK(stats.steiner_generated > 0);
+}
+
 TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {
     // tests/data/recover/prism-96-fan-caps-h1-r22.off: a 96-gon prism of
     // radius 10 and height 1, both caps fanned from one rim vertex, turned
@@ -1342,17 +1368,19 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
 }
 
 TEST_CASE("recover_faces: a turned CSG part that fails with the blocking vertices first recovers in ring order") {
-    // tests/data/recover/openscad-example012-r11.off: the shared
-    // thingicsg-openscad-example012 turned by rotate_surface.py seed 11.
-    // With the flips' nested removals taking the blocking ring vertices
-    // first (the default), recovery fails in every order of the faces and
-    // with every unblocking point; in ring order, the first attempts'
-    // order before session 33, it recovers (the flips leave 2 of its 32
-    // missing faces, and one Steiner point stays).
-    // cbr_mesh_recover_faces retries in that order (FlipState;
-    // test_capi_recover checks the retry).
+    // tests/data/recover/csg-x-r19.off: the shared wildmeshing-csg-x
+    // turned by rotate_surface.py seed 19. With the flips' nested removals
+    // taking the blocking ring vertices first (the default), recovery
+    // fails in every order of the faces and with every unblocking point
+    // ("a rounded intersection point fell outside the tetrahedra it was
+    // meant to split"); in ring order, the first attempts' order before
+    // session 33, it recovers. cbr_mesh_recover_faces retries in that
+    // order (FlipState; test_capi_recover checks the retry). (Until
+    // session 39 this test used thingicsg-openscad-example012 turned by
+    // seed 11, which the last unblocking try now recovers in the default
+    // order.)
     cbr::test::OffSurface s;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/openscad-example012-r11.off", s));
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/csg-x-r19.off", s));
     {
         const cbr::recover::RecoveryResult r = recover_fresh(s, {});
         CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows why the retry is there

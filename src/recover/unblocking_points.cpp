@@ -212,8 +212,8 @@ private:
         std::size_t star = 0;
         if (!insert(at, p, steiner, star)) return false;
         const std::size_t after = met_count(a, b);
-        if (after < count && star <= options_.max_star) {
-            count = after;
+        if ((after < count || options_.keep_first) && star <= options_.max_star) {
+            count = std::min(after, count);
             return true;
         }
         if (after < count) ++result_.refused_for_star;

@@ -37,13 +37,20 @@ struct UnblockingOptions {
     std::size_t max_star = kUnblockingMaxStar;
     std::size_t tets_per_point = 8;
     double clearance = 0.1;
+    // Keep the first point each target gets inserted (on the side of the
+    // face most crossed tetrahedra lie on first, the farthest first),
+    // whether or not the edge then meets fewer tetrahedra: recovery's last
+    // try, for nearly planar regions of many input triangles, where a
+    // point that only moves the crossings still gives the flips
+    // tetrahedra off the plane to work with.
+    bool keep_first = false;
 };
 // Denser and nearer the surface: recovery's retry when the default points
 // left faces that defeated conforming recovery. On turned prisms with
 // fanned caps (nearly flat layers of thin tetrahedra) they let the flips
 // recover what conforming recovery failed on: 3 of the 273 turned copies
 // that failed in every retry before recover so (recovery.cpp).
-constexpr UnblockingOptions kDenseUnblocking{kUnblockingMaxStar, 4, 0.05};
+constexpr UnblockingOptions kDenseUnblocking{kUnblockingMaxStar, 4, 0.05, false};
 
 struct UnblockingResult {
     std::size_t kept = 0;              // points kept (appended to the Steiner list)
@@ -57,8 +64,9 @@ struct UnblockingResult {
 // no face of the mesh, recovered faces included), on no missing triangle
 // (exact) and not nearer one than options.clearance times the face's
 // shortest edge; it is kept only when the edge then meets fewer
-// tetrahedra and its star has at most options.max_star tetrahedra (else
-// the mesh is restored as it was). Appends the points kept to `steiner`,
+// tetrahedra (or, with options.keep_first, whatever it meets) and its star
+// has at most options.max_star tetrahedra (else the mesh is restored as it
+// was). Appends the points kept to `steiner`,
 // in increasing id order.
 UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing,
