@@ -66,8 +66,7 @@ struct UnblockingResult {
 // shortest edge; it is kept only when the edge then meets fewer
 // tetrahedra (or, with options.keep_first, whatever it meets) and its star
 // has at most options.max_star tetrahedra (else the mesh is restored as it
-// was). Appends the points kept to `steiner`,
-// in increasing id order.
+// was). Appends the points kept to `steiner`, in increasing id order.
 UnblockingResult insert_unblocking_points(mesh::TetMesh& m, const ConstraintFaces& faces,
                                           const std::vector<std::size_t>& missing,
                                           std::vector<mesh::VertexId>& steiner,

@@ -19,11 +19,12 @@ struct DihedralCall {
 };
 
 // Runs the phase as `options` ask (flips, dihedral_flips,
-// dihedral_smoothing), adding its flips and moves to `stats`; no flip or
-// move makes a tetrahedron under `keep_radius_ratio` that is worse than
-// those it replaces (improve_dihedrals_by_flips, smooth_for_dihedrals). The first flips look at every
-// tetrahedron; each later call first at what changed since the last sweep
-// of the call before it. `calls`, for tests, gets every call in order.
+// dihedral_smoothing), adding its flips and moves to `stats`.
+// `keep_radius_ratio` is the radius ratio that the flips and moves keep
+// (improve_dihedrals_by_flips, smooth_for_dihedrals). The first flips
+// look at every tetrahedron; each later call first at what changed since
+// the last sweep of the call before it. `calls`, for tests, gets every
+// call in order.
 void improve_angles(RefineContext& c, const RefineOptions& options, double keep_radius_ratio, RefineStats& stats,
                     std::vector<DihedralCall>* calls = nullptr);
 
