@@ -1299,9 +1299,9 @@ TEST_CASE("recover_faces: a turned CAD plate recovers with the dense unblocking 
     // tests/data/recover/guide-arm-r41.off: the shared
     // thingiverse-feeder-guide-arm turned in space (rotate_surface.py seed
     // 41). Six of its triangles lie in a plate of 444 input triangles that
-    // the turn makes nearly coplanar. Every earlier unblocking try turns
-    // its points away there (none makes a missing edge meet fewer
-    // tetrahedra), and conforming recovery then breaks a face's disk in
+    // the turn makes nearly coplanar. The earlier unblocking tries turn
+    // nearly all their points away there (few make a missing edge meet
+    // fewer tetrahedra), and conforming recovery then breaks a face's disk in
     // every order of the faces (TetGen recovers the copy). recovery.cpp's
     // last try keeps the dense points each target first gets inserted
     // (UnblockingOptions::keep_first).

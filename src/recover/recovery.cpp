@@ -175,7 +175,7 @@ constexpr UnblockingTry kUnblockingTries[] = {
     // (UnblockingOptions::keep_first). In a nearly planar region of many
     // input triangles (a CAD plate turned in space) a point that only
     // moves a missing edge's crossings still puts tetrahedra off the plane
-    // for the flips, where the points of the tries above were all turned
+    // for the flips, where the tries above turned nearly all their points
     // away: thingiverse-feeder-guide-arm turned by rotate_surface.py seed
     // 41 (a plate of 444 triangles) then recovers in the first attempt,
     // with 3 Steiner points inside, where every attempt failed before

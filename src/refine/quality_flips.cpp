@@ -366,14 +366,14 @@ DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees,
         // since its last sweep (the points moved for the angle in between;
         // the rest was tried and failed), the next ones where the last one
         // flipped.
+        const std::uint32_t from = k > 0 ? flips.last_sweep : since;  // since 0: all
         c.start_pass();
         flips.last_sweep = c.pass();
         Flipper flipper(c, kMinDihedral, keep_radius_ratio);
         flipper.after_another = c.options.edge_removal_after_another;
         flipper.log = log;
         const std::size_t done = sweep(c, flipper, [&](TetId t) {
-            const bool near_change = k > 0 ? c.changed_near(t) : c.changed_near_since(t, since);  // since 0: all
-            return near_change && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
+            return c.changed_near_since(t, from) && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;
         });
         flips.flips += done + flipper.after_another_done;  // a pair is two removals
         flips.after_another += flipper.after_another_done;
