@@ -60,6 +60,10 @@ public:
     // (remove_edge_after_another), and how many such pairs it did.
     bool after_another = false;
     std::size_t after_another_done = 0;
+    // Whether an edge removal may make chords over the size bound when the
+    // edge it removes is over it too, none longer than that edge
+    // (chord_limit2).
+    bool chords_up_to_removed_edge = false;
     // For tests (improve_dihedrals_by_flips' log): the corners of the
     // tetrahedra each flip replaced, noted before it changes the mesh, and
     // of those it made.
@@ -152,8 +156,14 @@ private:
     // floor ends their search early. The chords are new edges: the size
     // bound applies to them (the ring's sides are edges already, whatever
     // their length).
-    mesh::RingObjective objective_{oriented_radius_ratio, 0,
-                                   [this](VertexId a, VertexId b) { return c_.edge_within_size(a, b); }};
+    mesh::RingObjective objective_{oriented_radius_ratio, 0, [this](VertexId a, VertexId b) {
+                                       return c_.edge_within_size(a, b) ||
+                                              squared_distance(m_.point(a), m_.point(b)) <= chord_limit2_;
+                                   }};
+    // The squared length up to which a chord may exceed the size bound in
+    // the next ring triangulation (-1: none may).
+    double chord_limit2_ = -1;
+    double chord_limit2(VertexId u, VertexId v) const;
 };
 
 // Edge removal of uv (Definition 5.8, the shell transformation) with the
@@ -168,6 +178,27 @@ bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
     return true;
 }
 
+// A removal judged by the smallest dihedral angle may find that every ring
+// triangulation that would raise the angle has a chord over the size bound.
+// That happens around a flat tetrahedron whose own inner edge is over the
+// bound and was never split (refinement refuses points that near the
+// surface): thingiverse-chain-link's smallest angle stayed at 0.0028 deg
+// (TetGen -pYq1.414: 0.0029) in one of four input points under two nearly
+// coplanar input triangles, whose other diagonal, 1.76 long, is its inner
+// edge. So an edge over the bound may be replaced by chords no longer than
+// itself (a pair of removals: than the longer of its two edges where over
+// the bound). The mesh's longest edges do not grow, and the tetrahedra
+// left over the bound are still counted (RefineStats::unresolved_size).
+// `cbr mesh` on the 37 shared surfaces changed on 8: smallest angle on the
+// chain link 0.0028 -> 0.076 deg, golf ball 0.61 -> 3.4, octocat 0.0020
+// -> 0.0022 (TetGen's own smallest, the same tetrahedron), openscad-
+// example016 4.1 -> 4.6, the same on the other 4; tetrahedra over the
+// bound fewer on 5 of the 8 (chain link 392 -> 367), more on 2
+// (cheburashka 24 -> 28).
+double Flipper::chord_limit2(VertexId u, VertexId v) const {
+    return chords_up_to_removed_edge && !c_.edge_within_size(u, v) ? squared_distance(m_.point(u), m_.point(v)) : -1;
+}
+
 bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     mesh::Shell& s = shell_;
     const std::int32_t region = c_.region(t);
@@ -175,6 +206,7 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
     if (!removable_shell(u, v, t, s) || !shell_in_region(s, region, old_min)) return false;
     std::vector<mesh::RingTriangle>& tris = triangles_;
     objective_.floor = old_min * kGain;
+    chord_limit2_ = chord_limit2(u, v);
     if (!mesh::best_ring_triangulation(m_, u, v, s, tris, nullptr, objective_)) return false;
     if (radius_ratio_floor_ > 0) {
         std::vector<Corners>& made = made_;
@@ -233,6 +265,9 @@ bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
             if (c_.is_surface_edge(end, r)) continue;
             mesh::Shell& inner = shell_;
             double worst = outer_worst;
+            // The pair removes both edges: its chords may be as long as
+            // the longer of the two where it is over the bound.
+            chord_limit2_ = std::max(chord_limit2(u, v), chord_limit2(end, r));
             if (!removable_shell(end, r, outer.tets[i], inner) || !shell_in_region(inner, region, worst) ||
                 !mesh::best_ring_triangulation(m_, end, r, inner, triangles_, nullptr, any_valid))
                 continue;
@@ -266,7 +301,7 @@ bool Flipper::second_removal_beats(VertexId u, VertexId v, double worst, const s
                                    const std::vector<TetId>& first, std::vector<TetId>& made) {
     const auto at_uv = std::find_if(first.begin(), first.end(), [&](TetId x) { return mesh::holds_edge(m_, x, u, v); });
     mesh::Shell& second = shell_;
-    objective_.floor = worst * kGain;
+    objective_.floor = worst * kGain;  // chord_limit2_ stays the pair's
     if (at_uv == first.end() || !removable_shell(u, v, *at_uv, second) ||
         !mesh::best_ring_triangulation(m_, u, v, second, triangles_, nullptr, objective_) ||
         mesh::transform_shell(m_, u, v, second, triangles_, &made) != mesh::FlipResult::kDone)
@@ -371,6 +406,7 @@ DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees,
         flips.last_sweep = c.pass();
         Flipper flipper(c, kMinDihedral, keep_radius_ratio);
         flipper.after_another = c.options.edge_removal_after_another;
+        flipper.chords_up_to_removed_edge = c.options.dihedral_chords_up_to_removed_edge;
         flipper.log = log;
         const std::size_t done = sweep(c, flipper, [&](TetId t) {
             return c.changed_near_since(t, from) && radius_ratio(c.m, t) < q_bound && flipper.q(t) < below_degrees;

@@ -38,7 +38,10 @@ std::size_t improve_by_flips(RefineContext& c, double threshold);
 // options.edge_removal_after_another, an edge removal that no
 // triangulation of the edge's ring allows may follow the removal of an
 // edge from one of its ends to a ring vertex (the pair judged as one flip:
-// what it leaves against all it replaced).
+// what it leaves against all it replaced). With
+// options.dihedral_chords_up_to_removed_edge, a flip that removes an edge
+// over the size bound may make new edges over it too, none longer than
+// that edge.
 struct DihedralFlips {
     std::size_t flips = 0;          // flips done, each removal of a pair counted
     std::size_t after_another = 0;  // of them, pairs of edge removals

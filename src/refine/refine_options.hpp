@@ -42,13 +42,18 @@ struct RefineOptions {
     bool dihedral_flips = true;       // after the passes (quality_flips.hpp)
     bool sliver_face_bound = true;    // sliver removal's skip by a face's bound (same mesh either way)
     bool edge_removal_after_another = true;  // dihedral flips: an edge removal made possible by another first
+    // Dihedral flips: chords over the size bound where the removed edge is
+    // over it, none longer (quality_flips.cpp, Flipper::chord_limit2).
+    bool dihedral_chords_up_to_removed_edge = true;
     bool dihedral_smoothing = true;   // after the dihedral flips (smoothing.hpp), then those flips again
     bool angle_rescue = true;         // last: rescue_small_angles (sliver_removal.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
 // at most kEdgeFactor * (h(u) + h(v)) / 2 long (surface edges are input and
-// never split). Flips and smoothing keep this bound.
+// never split). Flips and smoothing keep this bound, except that a flip for
+// the smallest dihedral angle may replace an edge over it by chords no
+// longer than that edge.
 inline constexpr double kEdgeFactor = 1.5;
 // An edge from a surface vertex u into the interior may always be as long as
 // kSurfaceReach times the largest circumradius of the input triangles at u
