@@ -1321,6 +1321,33 @@ TEST_CASE("recover_faces: a turned CAD plate recovers with the dense unblocking 
     CHECK(stats.steiner_generated > 0);
 }
 
+TEST_CASE("recover_faces: a turned CAD plate recovers with unblocking points across recovered faces, in rounds") {
+    // tests/data/recover/guide-arm-r51.off: the same part turned by
+    // rotate_surface.py seed 51, its plate of 444 input triangles nearly
+    // coplanar again (TetGen recovers the copy, with 55 Steiner points).
+    // The last unblocking try as it was for seed 41 (one round, the walk
+    // to a point stopped at recovered faces) left two faces of the plate
+    // whose missing edge no point could be walked to, and splitting then
+    // found no position for a Steiner point in every attempt. With the
+    // walk free to pass recovered faces and a second round of points and
+    // flips (recovery.cpp, kUnblockingTries), the flips recover every face:
+    // no conforming point, 5 Steiner points left.
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/guide-arm-r51.off", s));
+    {
+        cbr::recover::RecoveryOptions without = {};
+        without.unblocking_tries = cbr::recover::RecoveryOptions{}.unblocking_tries - 1;
+        const cbr::recover::RecoveryResult r = recover_fresh(s, without);
+        CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the last try
+        CHECK_FALSE(r.unrecovered.empty());
+    }
+    const cbr::recover::RecoveryStats stats = recover_checked(s, {});
+    MESSAGE("Steiner points generated " << stats.steiner_generated << ", remaining " << stats.steiner_remaining
+                                        << ", conforming points " << stats.conforming_points);
+    CHECK(stats.steiner_generated > 0);
+    CHECK(stats.conforming_points == 0);
+}
+
 TEST_CASE("recover_faces: a turned prism that fails in the default flip state recovers in another") {
     // tests/data/recover/prism-96-fan-caps-h1-r22.off: a 96-gon prism of
     // radius 10 and height 1, both caps fanned from one rim vertex, turned

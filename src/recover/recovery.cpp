@@ -109,22 +109,29 @@ bool recover_in_face_orders(mesh::TetMesh& m, const ConstraintFaces& faces, cons
 }
 
 // Where the first flips left faces: interior points that unblock the flips
-// (placed as `unblocking` says), the flips again, then conforming recovery
-// and splitting of what is still missing, in other orders of the faces
-// after a failure. `missing`: in, the faces the first flips left; out,
-// those still missing after the second flips. False (result.why set) when
-// conforming recovery or splitting failed; `star_refused`: whether the
+// (placed as `unblocking` says), the flips again, up to `rounds` times
+// while faces are left and the last round kept a point, then conforming
+// recovery and splitting of what is still missing, in other orders of the
+// faces after a failure. `missing`: in, the faces the first flips left;
+// out, those still missing after the last flips. False (result.why set)
+// when conforming recovery or splitting failed; `star_refused`: whether the
 // star limit turned an unblocking point away.
 bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vector<std::size_t>& missing,
-                        const UnblockingOptions& unblocking_options, int face_orders, FlipDirection direction,
-                        NestedOrder nested, RecoveryStats& stats, RecoveryResult& result, bool& star_refused) {
-    const UnblockingResult unblocking =
-        insert_unblocking_points(m, faces, missing, result.steiner, unblocking_options);
-    star_refused = unblocking.refused_for_star > 0;
-    stats.steiner_generated += unblocking.kept;
-    if (unblocking.kept > 0)
+                        const UnblockingOptions& unblocking_options, int rounds, int face_orders,
+                        FlipDirection direction, NestedOrder nested, RecoveryStats& stats, RecoveryResult& result,
+                        bool& star_refused) {
+    std::size_t kept = 0;
+    star_refused = false;
+    for (int round = 0; round < rounds && !missing.empty(); ++round) {
+        const UnblockingResult unblocking =
+            insert_unblocking_points(m, faces, missing, result.steiner, unblocking_options);
+        star_refused = star_refused || unblocking.refused_for_star > 0;
+        stats.steiner_generated += unblocking.kept;
+        kept += unblocking.kept;
+        if (unblocking.kept == 0) break;
         missing = recover_by_flips(m, faces, missing, FlipMemo::kOn, FlipRounds::kWithoutDeepest, 0, direction,
                                    nested);
+    }
     // §6 before conforming recovery: the points that the recovered faces
     // do not need go (they are marked, so none is lost); near the faces
     // still missing, the points left would make thin tetrahedra for the
@@ -132,7 +139,7 @@ bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vec
     // with them, conforming recovery fails; without, it adds 6,948
     // points, where it added 42,202 on the mesh of the flips alone
     // before it failed).
-    if (unblocking.kept > 0 && !missing.empty()) suppress_vertices(m, result.steiner);
+    if (kept > 0 && !missing.empty()) suppress_vertices(m, result.steiner);
     return missing.empty() || recover_in_face_orders(m, faces, missing, face_orders, stats, result);
 }
 
@@ -144,14 +151,18 @@ bool unblock_then_split(mesh::TetMesh& m, const ConstraintFaces& faces, std::vec
 struct UnblockingTry {
     UnblockingOptions options;
     bool after_star_refusal;
+    int rounds = 1;  // of points then flips (unblock_then_split)
 };
 // `placement` with no limit on the stars.
 constexpr UnblockingOptions of_any_star(UnblockingOptions placement) {
     placement.max_star = kUnblockingAnyStar;
     return placement;
 }
+// `placement` with the first point of each target kept and the walk to a
+// point free to pass recovered faces.
 constexpr UnblockingOptions first_kept(UnblockingOptions placement) {
     placement.keep_first = true;
+    placement.walk_through_recovered = true;
     return placement;
 }
 constexpr UnblockingTry kUnblockingTries[] = {
@@ -180,7 +191,15 @@ constexpr UnblockingTry kUnblockingTries[] = {
     // 41 (a plate of 444 triangles) then recovers in the first attempt,
     // with 3 Steiner points inside, where every attempt failed before
     // (TetGen recovers it). The same try with the default points did not.
-    {first_kept(kDenseUnblocking), false},
+    // Its points may lie across a recovered face from the crossed
+    // tetrahedra (UnblockingOptions::walk_through_recovered), and it runs
+    // up to three rounds of points and flips: the same part turned by seed
+    // 51 (a plate of 444 triangles again) kept 30 points in a first round
+    // that left 4 faces, and no point at all near the last 2 while the
+    // walk stopped at recovered faces; with both, the second round (5
+    // points) lets the flips recover every face, with no conforming point
+    // (TetGen recovers it too).
+    {first_kept(kDenseUnblocking), false, 3},
 };
 
 static_assert(std::size(kUnblockingTries) == static_cast<std::size_t>(RecoveryOptions{}.unblocking_tries),
@@ -208,7 +227,7 @@ bool recover_after_flips(mesh::TetMesh& m, const ConstraintFaces& faces, std::ve
             flipped.restore(m, stats, result);
             missing = flips_left;
         }
-        if (unblock_then_split(m, faces, missing, attempt.options, options.face_orders, direction,
+        if (unblock_then_split(m, faces, missing, attempt.options, attempt.rounds, options.face_orders, direction,
                                options.nested_order, stats, result, star_refused))
             return true;
         if (tried++ == 0) {

@@ -259,9 +259,10 @@ private:
         return false;
     }
 
-    // Visibility walk from t towards p that never crosses a constraint face
-    // nor leaves the hull: the tetrahedron that holds p strictly inside, or
-    // kNoTet (p on a face of the mesh, behind the surface, or lost).
+    // Visibility walk from t towards p that never leaves the hull nor, unless
+    // options_.walk_through_recovered, crosses a constraint face: the
+    // tetrahedron that holds p strictly inside, or kNoTet (p on a face of
+    // the mesh, behind the surface, or lost).
     TetId walk(TetId t, const double* p) const {
         for (int step = 0; step < kMaxWalk; ++step) {
             const VertexId* v = m_.vertices(t);
@@ -271,7 +272,7 @@ private:
                 if (geom::orient3d(m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]), p) < 0) exit = f;
             }
             if (exit < 0) return strictly_inside(m_, t, p) ? t : kNoTet;
-            if (m_.is_constrained(t, exit)) return kNoTet;
+            if (m_.is_constrained(t, exit) && !options_.walk_through_recovered) return kNoTet;
             t = mesh::facet_tet(m_.neighbor(t, exit));
             if (m_.is_ghost(t)) return kNoTet;
         }

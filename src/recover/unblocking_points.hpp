@@ -32,7 +32,8 @@ constexpr std::size_t kUnblockingAnyStar = static_cast<std::size_t>(-1);
 // Where and how near the surface the points go: one point per
 // `tets_per_point` tetrahedra a missing edge meets (at most 8 per edge), and
 // never nearer a missing triangle than `clearance` times the face's
-// shortest edge; stars of at most `max_star` tetrahedra.
+// shortest edge; stars of at most `max_star` tetrahedra; see also the
+// last two fields.
 struct UnblockingOptions {
     std::size_t max_star = kUnblockingMaxStar;
     std::size_t tets_per_point = 8;
@@ -44,6 +45,12 @@ struct UnblockingOptions {
     // point that only moves the crossings still gives the flips
     // tetrahedra off the plane to work with.
     bool keep_first = false;
+    // Let the walk to a point pass recovered faces (a Steiner point is legal
+    // anywhere off the surface; the protected cavity still never crosses
+    // one). Without it, a point across a recovered face from the crossed
+    // tetrahedra is not tried: on a turned plate whose faces are nearly
+    // all recovered, that is every point near the last missing edges.
+    bool walk_through_recovered = false;
 };
 // Denser and nearer the surface: recovery's retry when the default points
 // left faces that defeated conforming recovery. On turned prisms with
@@ -61,7 +68,9 @@ struct UnblockingResult {
 // points at decreasing distances from points of the edge along the face's
 // normal, the side of the crossed tetrahedra first. A point is inserted only
 // when it is strictly inside the tetrahedron the walk to it ends in (so on
-// no face of the mesh, recovered faces included), on no missing triangle
+// no face of the mesh, recovered faces included; the walk starts from a
+// crossed tetrahedron and, unless options.walk_through_recovered, stops at
+// a recovered face), on no missing triangle
 // (exact) and not nearer one than options.clearance times the face's
 // shortest edge; it is kept only when the edge then meets fewer
 // tetrahedra (or, with options.keep_first, whatever it meets) and its star
