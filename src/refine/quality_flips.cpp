@@ -155,7 +155,7 @@ private:
     // first pass, 14 thousand of 670 thousand in the third), and the
     // floor ends their search early. The chords are new edges: the size
     // bound applies to them (the ring's sides are edges already, whatever
-    // their length).
+    // their length), but for the exception of chord_limit2.
     mesh::RingObjective objective_{oriented_radius_ratio, 0, [this](VertexId a, VertexId b) {
                                        return c_.edge_within_size(a, b) ||
                                               squared_distance(m_.point(a), m_.point(b)) <= chord_limit2_;
@@ -181,14 +181,15 @@ bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
 // A removal judged by the smallest dihedral angle may find that every ring
 // triangulation that would raise the angle has a chord over the size bound.
 // That happens around a flat tetrahedron whose own inner edge is over the
-// bound and was never split (refinement refuses points that near the
-// surface): thingiverse-chain-link's smallest angle stayed at 0.0028 deg
-// (TetGen -pYq1.414: 0.0029) in one of four input points under two nearly
-// coplanar input triangles, whose other diagonal, 1.76 long, is its inner
-// edge. So an edge over the bound may be replaced by chords no longer than
-// itself (a pair of removals: than the longer of its two edges where over
-// the bound). The mesh's longest edges do not grow, and the tetrahedra
-// left over the bound are still counted (RefineStats::unresolved_size).
+// bound and stays so (refinement left it; RefineStats::unresolved_size
+// counts such tetrahedra): thingiverse-chain-link's smallest angle stayed
+// at 0.0028 deg (TetGen -pYq1.414: 0.0029) in a tetrahedron of four input
+// points under two nearly coplanar input triangles, whose other diagonal,
+// 1.76 long, is its inner edge. So an edge over the bound may be replaced
+// by chords no longer than itself (a pair of removals: than the longer of
+// its two edges where over the bound; the chain link's tetrahedron went
+// with a pair). The mesh's longest edges do not grow, and the tetrahedra
+// left over the bound are still counted.
 // `cbr mesh` on the 37 shared surfaces changed on 8: smallest angle on the
 // chain link 0.0028 -> 0.076 deg, golf ball 0.61 -> 3.4, octocat 0.0020
 // -> 0.0022 (TetGen's own smallest, the same tetrahedron), openscad-
