@@ -1295,6 +1295,24 @@ TEST_CASE("recover_faces: a turned fan-cap prism recovers with denser unblocking
     CHECK(recover_checked(s, in_ring_order()).steiner_generated > 0);
 }
 
+// The turned copy in `path` fails in every attempt without recovery.cpp's
+// last unblocking try (the reason containing `why`) and recovers with it,
+// passing recover_checked's checks: its statistics.
+cbr::recover::RecoveryStats recovered_by_last_try(const char* path, const char* why) {
+    cbr::test::OffSurface s;
+    REQUIRE(cbr::test::read_off(path, s));
+    cbr::recover::RecoveryOptions without = {};
+    without.unblocking_tries = cbr::recover::RecoveryOptions{}.unblocking_tries - 1;
+    const cbr::recover::RecoveryResult r = recover_fresh(s, without);
+    CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the last try
+    CHECK_FALSE(r.unrecovered.empty());
+    CHECK(r.why.find(why) != std::string::npos);
+    const cbr::recover::RecoveryStats stats = recover_checked(s, {});
+    MESSAGE("Steiner points generated " << stats.steiner_generated << ", remaining " << stats.steiner_remaining
+                                        << ", conforming points " << stats.conforming_points);
+    return stats;
+}
+
 TEST_CASE("recover_faces: a turned CAD plate recovers with the dense unblocking points kept where they do not cut") {
     // tests/data/recover/guide-arm-r41.off: the shared
     // thingiverse-feeder-guide-arm turned in space (rotate_surface.py seed
@@ -1305,19 +1323,8 @@ TEST_CASE("recover_faces: a turned CAD plate recovers with the dense unblocking 
     // every order of the faces (TetGen recovers the copy). recovery.cpp's
     // last try keeps the dense points each target first gets inserted
     // (UnblockingOptions::keep_first).
-    cbr::test::OffSurface s;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/guide-arm-r41.off", s));
-    {
-        cbr::recover::RecoveryOptions without = {};
-        without.unblocking_tries = cbr::recover::RecoveryOptions{}.unblocking_tries - 1;
-        const cbr::recover::RecoveryResult r = recover_fresh(s, without);
-        CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the last try
-        CHECK_FALSE(r.unrecovered.empty());
-        CHECK(r.why.find("the sub-faces of a face do not form a disk") != std::string::npos);
-    }
-    const cbr::recover::RecoveryStats stats = recover_checked(s, {});
-    MESSAGE("Steiner points generated " << stats.steiner_generated << ", remaining " << stats.steiner_remaining
-                                        << ", conforming points " << stats.conforming_points);
+    const cbr::recover::RecoveryStats stats =
+        recovered_by_last_try(CBR_TEST_DATA_DIR "/recover/guide-arm-r41.off", "the sub-faces of a face do not form a disk");
     CHECK(stats.steiner_generated > 0);
 }
 
@@ -1332,18 +1339,8 @@ TEST_CASE("recover_faces: a turned CAD plate recovers with unblocking points acr
     // walk free to pass recovered faces and a second round of points and
     // flips (recovery.cpp, kUnblockingTries), the flips recover every face:
     // no conforming point, 5 Steiner points left.
-    cbr::test::OffSurface s;
-    REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/guide-arm-r51.off", s));
-    {
-        cbr::recover::RecoveryOptions without = {};
-        without.unblocking_tries = cbr::recover::RecoveryOptions{}.unblocking_tries - 1;
-        const cbr::recover::RecoveryResult r = recover_fresh(s, without);
-        CHECK_FALSE(r.ok);  // if this ever succeeds, the test no longer shows the last try
-        CHECK_FALSE(r.unrecovered.empty());
-    }
-    const cbr::recover::RecoveryStats stats = recover_checked(s, {});
-    MESSAGE("Steiner points generated " << stats.steiner_generated << ", remaining " << stats.steiner_remaining
-                                        << ", conforming points " << stats.conforming_points);
+    const cbr::recover::RecoveryStats stats =
+        recovered_by_last_try(CBR_TEST_DATA_DIR "/recover/guide-arm-r51.off", "no Steiner point position sees");
     CHECK(stats.steiner_generated > 0);
     CHECK(stats.conforming_points == 0);
 }
