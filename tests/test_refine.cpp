@@ -690,7 +690,7 @@ std::set<std::pair<VertexId, VertexId>> edges_of(const std::vector<Corners>& tet
     std::set<std::pair<VertexId, VertexId>> edges;
     for (const Corners& k : tets)
         for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j) edges.emplace(std::min(k[i], k[j]), std::max(k[i], k[j]));
+            for (int j = i + 1; j < 4; ++j) edges.insert(std::minmax(k[i], k[j]));
     return edges;
 }
 

@@ -260,6 +260,7 @@ bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
     if (!removable_shell(u, v, t, outer) || !shell_in_region(outer, region, outer_worst)) return false;
     mesh::RingObjective any_valid = objective_;
     any_valid.floor = 0;  // the measures are non-negative on valid tetrahedra
+    const double outer_limit2 = chord_limit2(u, v);
     for (std::size_t i = 0; i < outer.size(); ++i) {
         const VertexId r = outer.ring[i];
         for (VertexId end : {u, v}) {
@@ -268,7 +269,7 @@ bool Flipper::remove_edge_after_another(TetId t, VertexId u, VertexId v) {
             double worst = outer_worst;
             // The pair removes both edges: its chords may be as long as
             // the longer of the two where it is over the bound.
-            chord_limit2_ = std::max(chord_limit2(u, v), chord_limit2(end, r));
+            chord_limit2_ = std::max(outer_limit2, chord_limit2(end, r));
             if (!removable_shell(end, r, outer.tets[i], inner) || !shell_in_region(inner, region, worst) ||
                 !mesh::best_ring_triangulation(m_, end, r, inner, triangles_, nullptr, any_valid))
                 continue;
