@@ -89,3 +89,30 @@ timed() {
         rc=timeout
     fi
 }
+
+# timed_runs N CMD...: `timed` N times in a row (the last run's outputs
+# stay): rc is the first run's, secs the median of the wall times (N even:
+# the mean of the two middle ones). A run that timed out is not repeated.
+# One run of a few tenths of a second moves by 10% or more from one run to
+# the next on a shared machine; the median of three is steadier.
+timed_runs() {
+    local n=$1 first_rc k
+    shift
+    local times=()
+    timed "$@"
+    first_rc=$rc
+    times+=("$secs")
+    for ((k = 1; k < n; k++)); do
+        [ "$first_rc" = timeout ] && break
+        timed "$@"
+        times+=("$secs")
+    done
+    rc=$first_rc
+    secs=$(printf '%s\n' "${times[@]}" | sort -g | awk '{ v[NR] = $1 }
+        END { if (NR % 2) printf "%.3f", v[(NR + 1) / 2]; else printf "%.3f", (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
+}
+
+# check_repeat SCRIPT: `repeat` must be a whole number, at least 1.
+check_repeat() {
+    case $repeat in ''|*[!0-9]*|0) echo "$1: --repeat needs a whole number (at least 1)" >&2; exit 1 ;; esac
+}

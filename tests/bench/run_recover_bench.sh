@@ -19,6 +19,9 @@
 #                 building it takes minutes). $CBR_VERIFY names a prebuilt
 #                 cbr-verify instead.
 #   --timeout S   seconds allowed to each run (default $CBR_BENCH_TIMEOUT or 300)
+#   --repeat N    run each tool N times on each surface, one run after the
+#                 other, and report the median wall time (default
+#                 $CBR_BENCH_REPEAT or 1; every run makes the same mesh)
 #   --keep        keep the outputs (the work directory is printed)
 #
 # Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
@@ -40,6 +43,7 @@ verify_build=${CBR_BENCH_VERIFY_BUILD:-$repo/build-bench/verify}
 jobs=$(nproc 2>/dev/null || echo 2)
 extra=${CBR_BENCH_CMAKE_ARGS:-}
 limit=${CBR_BENCH_TIMEOUT:-300}
+repeat=${CBR_BENCH_REPEAT:-1}
 data=
 csv=
 verify=0
@@ -58,6 +62,8 @@ while [ $# -gt 0 ]; do
         --verify) verify=1; shift ;;
         --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
         --timeout=*) limit=${1#--timeout=}; shift ;;
+        --repeat) [ $# -ge 2 ] || usage; repeat=$2; shift 2 ;;
+        --repeat=*) repeat=${1#--repeat=}; shift ;;
         --keep) keep=1; shift ;;
         -h|--help) usage ;;
         --) shift; break ;;
@@ -73,6 +79,7 @@ while [ $# -gt 0 ]; do
 done
 surfaces+=("$@")
 case $limit in ''|*[!0-9]*|0) echo "run_recover_bench.sh: --timeout needs whole seconds (at least 1)" >&2; exit 1 ;; esac
+check_repeat run_recover_bench.sh
 
 bench_surfaces run_recover_bench.sh "$data" "${surfaces[@]}"
 bench_build_cbr run_recover_bench.sh
@@ -155,7 +162,8 @@ echo "file,faces,points,cbr_status,cbr_exit,cbr_missing,cbr_flips,cbr_steiner,cb
 
 n=${#files[@]}
 i=0
-echo "== run: ${n} surfaces, ${limit} s limit per run${checker:+, verified by $checker}"
+[ "$repeat" -gt 1 ] && runs=", median of $repeat runs" || runs=
+echo "== run: ${n} surfaces, ${limit} s limit per run${runs}${checker:+, verified by $checker}"
 for f in "${files[@]}"; do
     i=$((i + 1))
     name=$(basename "$f" .off)
@@ -168,7 +176,7 @@ EOF
 
     # libcbr
     out=$dir/cbr.out err=$dir/cbr.err
-    timed "$cbr" recover "$f" -o "$dir/cbr.mesh" --json "$dir/cbr.json"
+    timed_runs "$repeat" "$cbr" recover "$f" -o "$dir/cbr.mesh" --json "$dir/cbr.json"
     cbr_exit=$rc
     case $rc in
         0) cbr_status=ok ;;
@@ -200,7 +208,7 @@ EOF
         mkdir -p "$dir/tetgen"
         cp "$f" "$dir/tetgen/$name.off"
         out=$dir/tetgen.out err=$dir/tetgen.err
-        timed tetgen -pYQ "$dir/tetgen/$name.off"
+        timed_runs "$repeat" tetgen -pYQ "$dir/tetgen/$name.off"
         tg_exit=$rc
         tg_secs=$secs
         node=$dir/tetgen/$name.1.node

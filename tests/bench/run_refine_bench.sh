@@ -24,6 +24,9 @@
 #                 length away from the surface; TetGen gets nothing more)
 #   --csv FILE    also write the table (per mesh, then the totals) as CSV
 #   --timeout S   seconds allowed to each run (default $CBR_BENCH_TIMEOUT or 300)
+#   --repeat N    run each tool N times on each surface, one run after the
+#                 other, and report the median wall time (default
+#                 $CBR_BENCH_REPEAT or 1; every run makes the same mesh)
 #   --keep        keep the outputs (the work directory is printed)
 #
 # Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
@@ -43,6 +46,7 @@ build=${CBR_BENCH_BUILD:-$repo/build-bench/refine}
 jobs=$(nproc 2>/dev/null || echo 2)
 extra=${CBR_BENCH_CMAKE_ARGS:-}
 limit=${CBR_BENCH_TIMEOUT:-300}
+repeat=${CBR_BENCH_REPEAT:-1}
 data=
 csv=
 keep=0
@@ -65,6 +69,8 @@ while [ $# -gt 0 ]; do
         --growth=*) growth=${1#--growth=}; shift ;;
         --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
         --timeout=*) limit=${1#--timeout=}; shift ;;
+        --repeat) [ $# -ge 2 ] || usage; repeat=$2; shift 2 ;;
+        --repeat=*) repeat=${1#--repeat=}; shift ;;
         --keep) keep=1; shift ;;
         -h|--help) usage ;;
         --) shift; break ;;
@@ -80,6 +86,7 @@ while [ $# -gt 0 ]; do
 done
 surfaces+=("$@")
 case $limit in ''|*[!0-9]*|0) echo "run_refine_bench.sh: --timeout needs whole seconds (at least 1)" >&2; exit 1 ;; esac
+check_repeat run_refine_bench.sh
 if [ -n "$size" ] && ! awk -v s="$size" 'BEGIN { exit !(s + 0 > 0) }'; then
     echo "run_refine_bench.sh: --size needs a length > 0" >&2
     exit 1
@@ -112,7 +119,8 @@ echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,
 n=${#files[@]}
 i=0
 if [ -n "$growth" ]; then size_args+=(--growth "$growth"); fi
-echo "== run: ${n} surfaces, ${limit} s limit per run${size:+, --size $size}${growth:+, --growth $growth}"
+[ "$repeat" -gt 1 ] && runs=", median of $repeat runs" || runs=
+echo "== run: ${n} surfaces, ${limit} s limit per run${runs}${size:+, --size $size}${growth:+, --growth $growth}"
 for f in "${files[@]}"; do
     i=$((i + 1))
     name=$(basename "$f" .off)
@@ -120,7 +128,7 @@ for f in "${files[@]}"; do
     mkdir -p "$dir/tetgen"
 
     out=$dir/cbr.out err=$dir/cbr.err
-    timed "$cbr" mesh -q "$f" -o "$dir/cbr.node" --json "$dir/cbr.json" "${size_args[@]}"
+    timed_runs "$repeat" "$cbr" mesh -q "$f" -o "$dir/cbr.node" --json "$dir/cbr.json" "${size_args[@]}"
     case $rc in
         0) cbr_status=ok ;;
         3) cbr_status=FAILED ;;
@@ -133,7 +141,7 @@ for f in "${files[@]}"; do
     if [ "$have_tetgen" -eq 1 ]; then
         cp "$f" "$dir/tetgen/$name.off"
         out=$dir/tetgen.out err=$dir/tetgen.err
-        timed tetgen "-pYq1.414${tg_area}Q" "$dir/tetgen/$name.off"
+        timed_runs "$repeat" tetgen "-pYq1.414${tg_area}Q" "$dir/tetgen/$name.off"
         tg_secs=$secs
         if [ "$rc" = timeout ]; then
             tg_status=TIMEOUT
