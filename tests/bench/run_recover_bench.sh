@@ -16,8 +16,9 @@
 #   --csv FILE    also write the table (per mesh, then the totals) as CSV
 #   --verify      check both outputs with the independent checker
 #                 ../shared/tools/verify (`cbr-verify`; needs libcgal-dev;
-#                 building it takes minutes). $CBR_VERIFY names a prebuilt
-#                 cbr-verify instead.
+#                 building it takes minutes; found next to
+#                 $CBR_SHARED_DATA_DIR when that is set). $CBR_VERIFY names
+#                 a prebuilt cbr-verify instead.
 #   --timeout S   seconds allowed to each run (default $CBR_BENCH_TIMEOUT or 300)
 #   --repeat N    run each tool N times on each surface, one run after the
 #                 other, and report the median wall time (default
@@ -109,10 +110,14 @@ if [ "$verify" -eq 1 ]; then
         checker=$CBR_VERIFY
         echo "== cbr-verify: $checker (from CBR_VERIFY)"
     else
-        tool=$repo/../shared/tools/verify/build.sh
+        # ../shared/tools next to ../shared/data ($CBR_SHARED_DATA_DIR, else next to the repository).
+        tool=${CBR_SHARED_DATA_DIR:-$repo/../shared/data}/../tools/verify/build.sh
         echo "== cbr-verify: build in $verify_build (minutes the first time)"
-        if [ -f "$tool" ] && checker=$(bash "$tool" "$verify_build" 2>"$build/verify-build.log" | tail -n 1) \
-            && [ -x "$checker" ]; then
+        if [ ! -f "$tool" ]; then
+            # A worktree or clone away from ../shared, CBR_SHARED_DATA_DIR unset.
+            echo "   no $tool: set CBR_VERIFY to a built cbr-verify; no verification" >&2
+            checker=
+        elif checker=$(bash "$tool" "$verify_build" 2>"$build/verify-build.log" | tail -n 1) && [ -x "$checker" ]; then
             :
         else
             echo "   cbr-verify could not be built (see $build/verify-build.log; it needs" >&2
