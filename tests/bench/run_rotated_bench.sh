@@ -11,7 +11,7 @@
 #   --seeds N     rotations per surface, seeds 1..N (default 2)
 #   SURFACE...    names in the shared data (default: every surface)
 #
-# Other options (--csv, --verify, --timeout, --keep) go to
+# Other options (--csv, --verify, --timeout, --repeat, --keep) go to
 # run_recover_bench.sh, which builds libcbr and prints the table; the
 # rotated copies are named SURFACE-rSEED.
 set -eu
@@ -25,7 +25,7 @@ while [ $# -gt 0 ]; do
     case $1 in
         --seeds) [ $# -ge 2 ] || { echo "--seeds needs a number" >&2; exit 1; }; seeds=$2; shift 2 ;;
         --seeds=*) seeds=${1#--seeds=}; shift ;;
-        --csv|--timeout) [ $# -ge 2 ] || { echo "$1 needs a value" >&2; exit 1; }; pass+=("$1" "$2"); shift 2 ;;
+        --csv|--timeout|--repeat) [ $# -ge 2 ] || { echo "$1 needs a value" >&2; exit 1; }; pass+=("$1" "$2"); shift 2 ;;
         -*) pass+=("$1"); shift ;;
         *) names+=("${1%.off}"); shift ;;
     esac
