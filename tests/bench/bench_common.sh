@@ -90,11 +90,12 @@ timed() {
     fi
 }
 
-# timed_runs N CMD...: `timed` N times in a row (the last run's outputs
-# stay): rc is the first run's, secs the median of the wall times (N even:
-# the mean of the two middle ones). A run that timed out is not repeated.
-# One run of a few tenths of a second moves by 10% or more from one run to
-# the next on a shared machine; the median of three is steadier.
+# timed_runs N CMD...: `timed` up to N times in a row; secs is the median
+# of the wall times (N even: the mean of the two middle ones). The repeats
+# stop at a run that timed out or whose exit code differs from the first
+# run's: rc and the outputs left are always those of the last run. One run
+# of a few tenths of a second moves by 10% or more from one run to the next
+# on a shared machine; the median of three is steadier.
 timed_runs() {
     local n=$1 first_rc k
     shift
@@ -103,11 +104,11 @@ timed_runs() {
     first_rc=$rc
     times+=("$secs")
     for ((k = 1; k < n; k++)); do
-        [ "$first_rc" = timeout ] && break
+        # (rc may be the word "timeout": compared as strings)
+        if [ "$rc" = timeout ] || [ "$rc" != "$first_rc" ]; then break; fi
         timed "$@"
         times+=("$secs")
     done
-    rc=$first_rc
     secs=$(printf '%s\n' "${times[@]}" | sort -g | awk '{ v[NR] = $1 }
         END { if (NR % 2) printf "%.3f", v[(NR + 1) / 2]; else printf "%.3f", (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
 }
