@@ -697,9 +697,8 @@ std::set<std::pair<VertexId, VertexId>> edges_of(const std::vector<Corners>& tet
 TEST_CASE("refine: flips for the angle may replace an edge over the size bound by no longer chords") {
     // A flat tetrahedron whose inner edge is over the size bound and stays
     // so may have only ring triangulations whose chords are over the bound
-    // too; a flip
-    // for the smallest angle may then make chords no longer than the edge
-    // it removes (Flipper::chord_limit2; the log test below checks that
+    // too; a flip for the smallest angle may then make chords no longer
+    // than the edge it removes (Flipper::chord_limit2; the log test below checks that
     // rule on every flip). The angle points are left out on both sides, so
     // that the flips alone show it.
     cbr::refine::RefineOptions without, with;
