@@ -66,6 +66,12 @@ report_has() {
     grep -Eq -- "$1" "$tmp/out" || fail "the report does not match /$1/"
 }
 
+# report_lacks PATTERN: the last stdout does not match the pattern.
+report_lacks() {
+    checks=$((checks + 1))
+    ! grep -Eq -- "$1" "$tmp/out" || fail "the report matches /$1/"
+}
+
 # no_file PATH: a failed run left no file at PATH.
 no_file() {
     checks=$((checks + 1))
@@ -347,6 +353,15 @@ run_local() {
     expect 0 "" check "$tmp/tet.off" && report_has "4 points, 4 triangles" &&
         report_has "orientation +consistent, outward normals" && report_has "connected components +1" &&
         report_has "bounding box +\[0, 1\] x \[0, 1\] x \[0, 1\]"
+    # How near the surface comes to degenerate: on the unit tetrahedron
+    # nowhere (no note); a tetrahedron 1e-15 tall is valid (checked
+    # exactly), but its apex is 1e-15 from its base's corner.
+    expect 0 "" check "$tmp/tet.off" && report_has "closest points +1 apart: points 0 and 1 \(0\.57735 of" &&
+        report_has "flattest triangle +0 \(points 0, 2, 1\): smallest height 0\.5 of its longest edge" &&
+        report_lacks "within rounding of degenerate"
+    off sliver "0 0 0;1 0 0;0 1 0;0 0 1e-15" "$tet_faces"
+    expect 0 "" check "$tmp/sliver.off" && report_has "closest points +1e-15 apart: points 0 and 3" &&
+        report_has "smallest height 1e-15 of its longest edge" && report_has "note: within rounding of degenerate"
     off inward "$tet_points" "0 1 2;0 3 1;0 2 3;1 3 2"
     expect 0 "" check "$tmp/inward.off" && report_has "INWARD normals"
     off flipped "$tet_points" "0 1 2;0 1 3;0 3 2;1 2 3"

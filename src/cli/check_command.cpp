@@ -7,7 +7,9 @@
 //     out of range or repeated, zero-area and duplicate triangles,
 //     intersections, open and non-manifold edges);
 //  4. compute non-manifold vertices, orientation, components and the
-//     bounding box here (surface_topology.hpp);
+//     bounding box here (surface_topology.hpp), and how near the surface
+//     comes to degenerate (surface_margins.hpp: the closest points, from
+//     the Delaunay mesh of step 3, and the flattest triangle);
 //  5. print the report; exit 0 when nothing stops a recovery, else 2.
 #include "cli/check_command.hpp"
 #include "cli/mesh_handle.hpp"
@@ -26,6 +28,7 @@
 #include "cli/check_describe.hpp"
 #include "cli/check_report.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/surface_margins.hpp"
 #include "cli/surface_topology.hpp"
 #include "io/read_surface.hpp"
 
@@ -169,7 +172,8 @@ CheckReport build_report(const CheckArgs& args, const io::SurfaceMesh& s, const 
     r.path = args.path;
     r.points = static_cast<std::int64_t>(s.num_points());
     r.triangles = static_cast<std::int64_t>(s.num_triangles());
-    r.bounding_box = describe_box(bounding_box(s.xyz));
+    const BoundingBox box = bounding_box(s.xyz);
+    r.bounding_box = describe_box(box);
     if (dups.count > 0) r.merge_note = "the checks below merge each duplicate point into its first copy";
     r.rows.push_back(duplicate_points_row(dups, s));
     for (const DefectKindInfo& kind : defect_kinds()) {
@@ -181,6 +185,14 @@ CheckReport build_report(const CheckArgs& args, const io::SurfaceMesh& s, const 
     r.orientation = describe_orientation(topo, names);
     r.components = topo.components;
     r.unreferenced_points = static_cast<std::int64_t>(m.file_id.size()) - topo.used_points;
+    const ClosestPoints closest = closest_points(mesh, m.xyz);
+    const FlattestTriangle flattest = flattest_triangle(m.xyz, m.tris);
+    r.closest_points = describe_closest_points(closest, box, names);
+    r.flattest_triangle = describe_flattest_triangle(flattest, names);
+    if (nearly_degenerate(closest, box, flattest))
+        r.degenerate_note = "within rounding of degenerate there: recovery adds no point on the surface, and it "
+                            "can fail where the points it needs between such close parts do not exist in double "
+                            "precision";
     return r;
 }
 
@@ -219,7 +231,10 @@ void print_check_help(std::FILE* out) {
                  "of one triangle only). Reported for information (legal input: regions\n"
                  "meeting along an edge or at a point): non-manifold edges and vertices; also\n"
                  "the orientation (consistent or not; outward or inward when closed), the\n"
-                 "connected components and the bounding box. Ids are 0-based, in file order.\n"
+                 "connected components, the bounding box, and how near the surface comes to\n"
+                 "degenerate: its two closest points and its flattest triangle, with a note\n"
+                 "when either is within 1e-13 of its scale (recovery adds no point on the\n"
+                 "surface and can fail there). Ids are 0-based, in file order.\n"
                  "Formats (by extension): %s.\n"
                  "Coordinates are read exactly.\n"
                  "\n"

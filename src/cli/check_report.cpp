@@ -43,6 +43,9 @@ void print_report(std::FILE* out, const CheckReport& r, std::size_t max_lines) {
     print_line(out, "connected components", std::to_string(r.components));
     print_line(out, "points used by no triangle", std::to_string(r.unreferenced_points));
     print_line(out, "bounding box", r.bounding_box);
+    print_line(out, "closest points", r.closest_points);
+    print_line(out, "flattest triangle", r.flattest_triangle);
+    if (!r.degenerate_note.empty()) std::fprintf(out, "  note: %s\n", r.degenerate_note.c_str());
     const std::string summary = error_summary(r);
     std::fprintf(out, "\nresult: %s\n",
                  summary.empty() ? "ok, usable for boundary recovery" : ("NOT usable: " + summary).c_str());

@@ -29,6 +29,9 @@ struct CheckReport {
     std::string orientation;      // one line
     std::int64_t components = 0;
     std::int64_t unreferenced_points = 0;
+    std::string closest_points;     // one line (surface_margins.hpp)
+    std::string flattest_triangle;  // one line
+    std::string degenerate_note;    // non-empty when either is nearly degenerate
 
     std::int64_t error_count() const;
 };
