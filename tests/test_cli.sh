@@ -418,6 +418,13 @@ run_local() {
     cp "$io_data/../recover/prism-96-fan-caps-h3-r12.off" "$tmp/fails.off"
     expect 3 "could not recover triangle" recover "$tmp/fails.off" -o "$tmp/fails.mesh" --no-retries && no_file "$tmp/fails.mesh"
     expect 0 "" recover "$tmp/fails.off" -o "$tmp/fails-retried.mesh"
+    # A valid surface a few ulps from degenerate (a needle triangle 1.2e-15
+    # thick): the failure says so and names the triangle.
+    cp "$io_data/../recover/cylinder-needle.off" "$tmp/needle.off"
+    expect 3 "could not recover triangle.*within rounding of degenerate.*flattest triangle 432 \(points 18, 219, 218\): smallest height 1\.2[0-9]*e-15" \
+        recover "$tmp/needle.off" -o "$tmp/needle.mesh" --no-retries && no_file "$tmp/needle.mesh"
+    expect 3 "could not recover triangles 149" recover "$tmp/fails.off" -o "$tmp/fails.mesh" --no-retries &&
+        { checks=$((checks + 1)); ! grep -q "degenerate" "$tmp/err" || fail "a hint of degeneracy on the fan-cap prism"; }
 
     run_local_outputs "${2:-}"
 }

@@ -3,10 +3,15 @@
 
 #include <cbr/cbr.h>
 
+#include <numeric>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "cli/check_describe.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/surface_margins.hpp"
+#include "cli/surface_topology.hpp"
 #include "cli/volume_output.hpp"
 #include "io/write_volume.hpp"
 
@@ -21,6 +26,22 @@ RecoveryOutcome failure(int exit_code, std::string message) {
 }
 
 RecoveryOutcome api_failure(const cbr_mesh* m, int status) { return failure(exit_code_for(status), cbr_mesh_last_error(m)); }
+
+// After a failed recovery (the mesh is the Delaunay one again): where the
+// surface is within rounding of degenerate (surface_margins.hpp), what
+// says so, to append to the error; else "".
+std::string degenerate_hint(const cbr_mesh* m, const io::SurfaceMesh& surface) {
+    const ClosestPoints closest = closest_points(m, surface.xyz);
+    const FlattestTriangle flattest = flattest_triangle(surface.xyz, surface.tris);
+    const BoundingBox box = bounding_box(surface.xyz);
+    if (!nearly_degenerate(closest, box, flattest)) return "";
+    std::vector<std::int64_t> same_ids(surface.num_points());
+    std::iota(same_ids.begin(), same_ids.end(), std::int64_t{0});
+    const IdNames names{surface, same_ids};
+    return " (the surface is within rounding of degenerate, where no point can be added on it: closest points " +
+           describe_closest_points(closest, box, names) + "; flattest triangle " +
+           describe_flattest_triangle(flattest, names) + "; see cbr check)";
+}
 
 }  // namespace
 
@@ -57,6 +78,7 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
         if (status == CBR_ERR_RECOVERY_FAILED) {
             out.has_table_one = true;
             out.table_one = read_table_one(m);
+            out.error += degenerate_hint(m, surface);
         }
         return out;
     }
