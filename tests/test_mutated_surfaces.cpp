@@ -16,6 +16,10 @@
 //   - CBR_ERR_RECOVERY_FAILED naming triangles, the mesh left as Delaunay
 //     left it.
 //
+// The first draw of each pair that recovers a closed surface goes on to
+// mesh generation (cbr_mesh_refine), which must succeed and keep the same
+// checks, none of its points on an input triangle.
+//
 // Never a crash, an internal error, another code or an unproved mesh; in
 // CI's sanitizer build a read out of bounds on any of these inputs fails
 // too. Where a change makes the input invalid for certain (identical
@@ -240,8 +244,25 @@ const std::vector<Base>& bases() {
 
 // How each answer came out, per mutation (printed: what the sweep reached).
 struct Tally {
-    int recovered = 0, invalid = 0, failed = 0;
+    int recovered = 0, invalid = 0, failed = 0, refined = 0;
 };
+
+// Mesh generation (cbr_mesh_refine) on a recovered mesh: it must succeed,
+// keep every check of the recovered mesh, and put none of its points (field
+// points, Steiner points kept) on an input triangle (exact).
+void check_refined(cbr_mesh* m, const Polyhedron& p, double volume, bool regions_apart) {
+    REQUIRE_MESSAGE(cbr_mesh_refine(m) == CBR_OK, cbr_mesh_last_error(m));
+    cbr::test::check_recovered(m, p.xyz, p.tris, volume, regions_apart);
+    const std::int64_t np = cbr_mesh_point_count(m);
+    std::vector<double> xyz(3 * static_cast<std::size_t>(np));
+    REQUIRE(cbr_mesh_get_points(m, xyz.data()) == CBR_OK);
+    const auto P = [&](std::int64_t v) { return &xyz[3 * static_cast<std::size_t>(v)]; };
+    std::size_t on_surface = 0;
+    for (auto v = static_cast<std::int64_t>(point_count(p)); v < np; ++v)
+        for (std::size_t t = 0; t + 2 < p.tris.size(); t += 3)
+            on_surface += cbr::geom::point_in_triangle(P(v), P(p.tris[t]), P(p.tris[t + 1]), P(p.tris[t + 2]));
+    CHECK(on_surface == 0);
+}
 
 constexpr int kDrawsPerPair = 3;
 
@@ -291,6 +312,11 @@ TEST_CASE("mutated surfaces: recovered and proved, or refused with a clear error
                     const double volume =
                         mutation.expect == Expect::kRecovered ? static_cast<double>(original_volume) : 0.0;
                     cbr::test::check_recovered(m, p.xyz, p.tris, volume, mutation.closes);
+                    // The first draw of each pair goes on to a full mesh.
+                    if (draw == 0 && mutation.closes) {
+                        check_refined(m, p, volume, mutation.closes);
+                        ++t.refined;
+                    }
                 } else if (status == CBR_ERR_INVALID_INPUT) {
                     ++t.invalid;
                     CHECK(!message.empty());
@@ -303,9 +329,9 @@ TEST_CASE("mutated surfaces: recovered and proved, or refused with a clear error
             }
         }
     }
-    std::printf("%-40s %9s %7s %6s\n", "mutation", "recovered", "invalid", "failed");
+    std::printf("%-40s %9s %7s %7s %6s\n", "mutation", "recovered", "refined", "invalid", "failed");
     for (const Mutation& mutation : mutations()) {
         const Tally& t = tally[mutation.name];
-        std::printf("%-40s %9d %7d %6d\n", mutation.name, t.recovered, t.invalid, t.failed);
+        std::printf("%-40s %9d %7d %7d %6d\n", mutation.name, t.recovered, t.refined, t.invalid, t.failed);
     }
 }
