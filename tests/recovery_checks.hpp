@@ -75,6 +75,18 @@ inline long double enclosed_volume(const std::vector<double>& xyz, const std::ve
     return (six < 0 ? -six : six) / 6;
 }
 
+// How many of the points `ids` (coordinates in pts, 3 per id) lie on one
+// of the triangles `tris` (exact, closed triangles).
+inline std::size_t points_on_triangles(const std::vector<double>& pts, const std::vector<std::int64_t>& ids,
+                                       const std::vector<std::int64_t>& tris) {
+    const auto P = [&](std::int64_t v) { return &pts[3 * static_cast<std::size_t>(v)]; };
+    std::size_t on = 0;
+    for (std::int64_t v : ids)
+        for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
+            on += cbr::geom::point_in_triangle(P(v), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
+    return on;
+}
+
 // Proves the recovered mesh in `m` for the input points `xyz` and triangles
 // `tris` (0-based). The bounded regions must fill `expected_volume` when it
 // is positive (nested or shared-face inputs, where the enclosed volume of
@@ -123,11 +135,7 @@ inline void check_recovered(cbr_mesh* m, const std::vector<double>& xyz, const s
     // Steiner points: none on any input triangle (exact).
     std::vector<std::int64_t> steiner(static_cast<std::size_t>(cbr_mesh_steiner_count(m)));
     REQUIRE(cbr_mesh_steiner_points(m, steiner.data()) == CBR_OK);
-    std::size_t on_surface = 0;
-    for (std::int64_t sp : steiner)
-        for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
-            on_surface += cbr::geom::point_in_triangle(P(sp), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
-    CHECK(on_surface == 0);
+    CHECK(points_on_triangles(pts, steiner, tris) == 0);
     // Volume of the bounded regions = volume of the domain.
     const long double enclosed = expected_volume > 0 ? expected_volume : enclosed_volume(xyz, tris);
     if (enclosed > 0) CHECK(static_cast<double>(bounded / 6 / enclosed) == doctest::Approx(1.0).epsilon(1e-9));

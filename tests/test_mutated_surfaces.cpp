@@ -256,12 +256,9 @@ void check_refined(cbr_mesh* m, const Polyhedron& p, double volume, bool regions
     const std::int64_t np = cbr_mesh_point_count(m);
     std::vector<double> xyz(3 * static_cast<std::size_t>(np));
     REQUIRE(cbr_mesh_get_points(m, xyz.data()) == CBR_OK);
-    const auto P = [&](std::int64_t v) { return &xyz[3 * static_cast<std::size_t>(v)]; };
-    std::size_t on_surface = 0;
-    for (auto v = static_cast<std::int64_t>(point_count(p)); v < np; ++v)
-        for (std::size_t t = 0; t + 2 < p.tris.size(); t += 3)
-            on_surface += cbr::geom::point_in_triangle(P(v), P(p.tris[t]), P(p.tris[t + 1]), P(p.tris[t + 2]));
-    CHECK(on_surface == 0);
+    std::vector<std::int64_t> added;  // every point after the input's
+    for (auto v = static_cast<std::int64_t>(point_count(p)); v < np; ++v) added.push_back(v);
+    CHECK(cbr::test::points_on_triangles(xyz, added, p.tris) == 0);
 }
 
 constexpr int kDrawsPerPair = 3;

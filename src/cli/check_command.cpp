@@ -172,8 +172,7 @@ CheckReport build_report(const CheckArgs& args, const io::SurfaceMesh& s, const 
     r.path = args.path;
     r.points = static_cast<std::int64_t>(s.num_points());
     r.triangles = static_cast<std::int64_t>(s.num_triangles());
-    const BoundingBox box = bounding_box(s.xyz);
-    r.bounding_box = describe_box(box);
+    r.bounding_box = describe_box(bounding_box(s.xyz));
     if (dups.count > 0) r.merge_note = "the checks below merge each duplicate point into its first copy";
     r.rows.push_back(duplicate_points_row(dups, s));
     for (const DefectKindInfo& kind : defect_kinds()) {
@@ -185,11 +184,10 @@ CheckReport build_report(const CheckArgs& args, const io::SurfaceMesh& s, const 
     r.orientation = describe_orientation(topo, names);
     r.components = topo.components;
     r.unreferenced_points = static_cast<std::int64_t>(m.file_id.size()) - topo.used_points;
-    const ClosestPoints closest = closest_points(mesh, m.xyz);
-    const FlattestTriangle flattest = flattest_triangle(m.xyz, m.tris);
-    r.closest_points = describe_closest_points(closest, box, names);
-    r.flattest_triangle = describe_flattest_triangle(flattest, names);
-    if (nearly_degenerate(closest, box, flattest))
+    const SurfaceMargins margins = measure_margins(mesh, m.xyz, m.tris);
+    r.closest_points = describe_closest_points(margins, names);
+    r.flattest_triangle = describe_flattest_triangle(margins, names);
+    if (margins.nearly_degenerate())
         r.degenerate_note = "within rounding of degenerate there: recovery adds no point on the surface, and it "
                             "can fail where the points it needs between such close parts do not exist in double "
                             "precision";

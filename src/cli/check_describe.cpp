@@ -3,7 +3,6 @@
 
 #include <cbr/cbr.h>
 
-#include <cmath>
 #include <cstdio>
 
 namespace cbr::cli {
@@ -20,13 +19,6 @@ std::string short_number(double x) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", x);
     return buf;
-}
-
-double diagonal(const BoundingBox& box) {
-    if (box.empty) return 0;
-    double sum = 0;
-    for (std::size_t k = 0; k < 3; ++k) sum += (box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
-    return std::sqrt(sum);
 }
 
 std::string coordinates(const std::vector<double>& xyz, std::int64_t id) {
@@ -146,25 +138,21 @@ std::string describe_box(const BoundingBox& box) {
     return s;
 }
 
-std::string describe_closest_points(const ClosestPoints& closest, const BoundingBox& box, const IdNames& names) {
+std::string describe_closest_points(const SurfaceMargins& margins, const IdNames& names) {
+    const ClosestPoints& closest = margins.closest;
     if (!closest.found) return "-";
     std::string s = short_number(closest.distance) + " apart: points " + names.point(closest.a) + " and " +
                     names.point(closest.b);
-    const double size = diagonal(box);
-    if (size > 0) s += " (" + short_number(closest.distance / size) + " of the bounding box's diagonal)";
+    if (margins.diagonal > 0)
+        s += " (" + short_number(closest.distance / margins.diagonal) + " of the bounding box's diagonal)";
     return s;
 }
 
-std::string describe_flattest_triangle(const FlattestTriangle& flattest, const IdNames& names) {
+std::string describe_flattest_triangle(const SurfaceMargins& margins, const IdNames& names) {
+    const FlattestTriangle& flattest = margins.flattest;
     if (!flattest.found) return "-";
     return std::to_string(flattest.triangle) + " (points " + names.triangle_points(flattest.triangle) +
            "): smallest height " + short_number(flattest.height_ratio) + " of its longest edge";
-}
-
-bool nearly_degenerate(const ClosestPoints& closest, const BoundingBox& box, const FlattestTriangle& flattest) {
-    const double size = diagonal(box);
-    return (closest.found && size > 0 && closest.distance < kNearlyDegenerate * size) ||
-           (flattest.found && flattest.height_ratio < kNearlyDegenerate);
 }
 
 }  // namespace cbr::cli

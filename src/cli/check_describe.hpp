@@ -48,13 +48,11 @@ ReportRow duplicate_points_row(const DuplicatePoints& dups, const io::SurfaceMes
 ReportRow nonmanifold_vertices_row(const Topology& topo, const IdNames& names);
 std::string describe_orientation(const Topology& topo, const IdNames& names);
 std::string describe_box(const BoundingBox& box);
-// "2.1e-14 apart: points 9 and 125 (1.1e-14 of the bounding box's
+// "2.1e-14 apart: points 9 and 125 (8.6e-15 of the bounding box's
 // diagonal)"; "-" when there is none.
-std::string describe_closest_points(const ClosestPoints& closest, const BoundingBox& box, const IdNames& names);
-// "432 (points 18, 219, 218): smallest height 3.2e-16 of its longest
+std::string describe_closest_points(const SurfaceMargins& margins, const IdNames& names);
+// "432 (points 18, 219, 218): smallest height 1.2e-15 of its longest
 // edge"; "-" when there is none.
-std::string describe_flattest_triangle(const FlattestTriangle& flattest, const IdNames& names);
-// Whether either is under kNearlyDegenerate of its scale.
-bool nearly_degenerate(const ClosestPoints& closest, const BoundingBox& box, const FlattestTriangle& flattest);
+std::string describe_flattest_triangle(const SurfaceMargins& margins, const IdNames& names);
 
 }  // namespace cbr::cli

@@ -11,7 +11,6 @@
 #include "cli/check_describe.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/surface_margins.hpp"
-#include "cli/surface_topology.hpp"
 #include "cli/volume_output.hpp"
 #include "io/write_volume.hpp"
 
@@ -31,16 +30,14 @@ RecoveryOutcome api_failure(const cbr_mesh* m, int status) { return failure(exit
 // surface is within rounding of degenerate (surface_margins.hpp), what
 // says so, to append to the error; else "".
 std::string degenerate_hint(const cbr_mesh* m, const io::SurfaceMesh& surface) {
-    const ClosestPoints closest = closest_points(m, surface.xyz);
-    const FlattestTriangle flattest = flattest_triangle(surface.xyz, surface.tris);
-    const BoundingBox box = bounding_box(surface.xyz);
-    if (!nearly_degenerate(closest, box, flattest)) return "";
+    const SurfaceMargins margins = measure_margins(m, surface.xyz, surface.tris);
+    if (!margins.nearly_degenerate()) return "";
     std::vector<std::int64_t> same_ids(surface.num_points());
     std::iota(same_ids.begin(), same_ids.end(), std::int64_t{0});
     const IdNames names{surface, same_ids};
     return " (the surface is within rounding of degenerate, where no point can be added on it: closest points " +
-           describe_closest_points(closest, box, names) + "; flattest triangle " +
-           describe_flattest_triangle(flattest, names) + "; see cbr check)";
+           describe_closest_points(margins, names) + "; flattest triangle " +
+           describe_flattest_triangle(margins, names) + "; see cbr check)";
 }
 
 }  // namespace

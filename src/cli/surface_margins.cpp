@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "cli/surface_topology.hpp"
+#include "geom/vec3.hpp"
+
 namespace cbr::cli {
 namespace {
 
@@ -13,7 +16,7 @@ const double* at(const std::vector<double>& xyz, std::int64_t id) { return &xyz[
 
 double squared_distance(const double* p, const double* q) {
     const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    return geom::dot(d, d);
 }
 
 }  // namespace
@@ -56,17 +59,36 @@ FlattestTriangle flattest_triangle(const std::vector<double>& xyz, const std::ve
         const double* r = at(xyz, c);
         const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         const double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-        const double cross[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        double normal[3];
+        geom::cross(u, v, normal);
         const double longest2 = std::max({squared_distance(p, q), squared_distance(q, r), squared_distance(p, r)});
         // Smallest height = 2 area / longest edge = |u x v| / L; over L.
-        const double ratio =
-            std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) / longest2;
+        const double ratio = std::sqrt(geom::dot(normal, normal)) / longest2;
         if (!(ratio < best)) continue;
         best = ratio;
         out.triangle = static_cast<std::int64_t>(t / 3);
     }
     out.found = std::isfinite(best);
     out.height_ratio = best;
+    return out;
+}
+
+bool SurfaceMargins::nearly_degenerate() const {
+    return (closest.found && diagonal > 0 && closest.distance < kNearlyDegenerate * diagonal) ||
+           (flattest.found && flattest.height_ratio < kNearlyDegenerate);
+}
+
+SurfaceMargins measure_margins(const cbr_mesh* mesh, const std::vector<double>& xyz,
+                               const std::vector<std::int64_t>& tris) {
+    SurfaceMargins out;
+    out.closest = closest_points(mesh, xyz);
+    out.flattest = flattest_triangle(xyz, tris);
+    const BoundingBox box = bounding_box(xyz);
+    if (!box.empty) {
+        double sum = 0;
+        for (std::size_t k = 0; k < 3; ++k) sum += (box.hi[k] - box.lo[k]) * (box.hi[k] - box.lo[k]);
+        out.diagonal = std::sqrt(sum);
+    }
     return out;
 }
 

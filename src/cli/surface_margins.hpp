@@ -42,4 +42,18 @@ struct FlattestTriangle {
 // range or repeated are left out (errors of their own).
 FlattestTriangle flattest_triangle(const std::vector<double>& xyz, const std::vector<std::int64_t>& tris);
 
+// Both, and the scale the closest points are measured against.
+struct SurfaceMargins {
+    ClosestPoints closest;
+    FlattestTriangle flattest;
+    double diagonal = 0;  // of the points' bounding box
+    // Either under kNearlyDegenerate of its scale.
+    bool nearly_degenerate() const;
+};
+
+// closest_points and flattest_triangle of the surface xyz, tris, whose
+// points `mesh` holds as closest_points says.
+SurfaceMargins measure_margins(const cbr_mesh* mesh, const std::vector<double>& xyz,
+                               const std::vector<std::int64_t>& tris);
+
 }  // namespace cbr::cli
