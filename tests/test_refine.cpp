@@ -469,19 +469,25 @@ private:
     std::uint64_t x_;
 };
 
-TEST_CASE("refine: min_dihedral is the smallest of the six angles, bit for bit") {
-    // min_dihedral picks the smallest angle by signs and takes one
-    // arctangent; dihedral_range takes all six. The same
-    // double on random tetrahedra flattened toward a face or squashed
-    // along z (slivers, caps, needles: angles down to 1e-10 deg), on the
-    // regular tetrahedron (six equal angles) and on ones with repeated or
+TEST_CASE("refine: min_dihedral and dihedral_range pick the extreme angles, bit for bit") {
+    // min_dihedral and dihedral_range pick the smallest (and largest)
+    // angle by signs and take an arctangent of that one only;
+    // dihedral_angles takes all six. The same doubles as the smallest
+    // and largest of the six,
+    // on random tetrahedra flattened toward a face or squashed along z
+    // (slivers, caps, needles: angles down to 1e-10 deg), on the regular
+    // tetrahedron (six equal angles) and on ones with repeated or
     // collinear corners (zero angles).
     RandomTets tets(777);
     const auto same = [](const double (&p)[4][3]) {
+        std::array<double, 6> six{};
+        cbr::refine::dihedral_angles(p[0], p[1], p[2], p[3], six);
+        const double lo6 = *std::min_element(six.begin(), six.end());
+        const double hi6 = *std::max_element(six.begin(), six.end());
         double lo = -1, hi = -1;
         cbr::refine::dihedral_range(p[0], p[1], p[2], p[3], lo, hi);
         const double smallest = cbr::refine::min_dihedral(p[0], p[1], p[2], p[3]);
-        return smallest == lo;
+        return smallest == lo6 && lo == lo6 && hi == hi6;
     };
     std::size_t differ = 0;
     double tiniest = 180;
