@@ -471,13 +471,13 @@ private:
 
 TEST_CASE("refine: min_dihedral and dihedral_range pick the extreme angles, bit for bit") {
     // min_dihedral and dihedral_range pick the smallest (and largest)
-    // angle by signs and take an arctangent of that one only;
-    // dihedral_angles takes all six. The same doubles as the smallest
-    // and largest of the six,
-    // on random tetrahedra flattened toward a face or squashed along z
-    // (slivers, caps, needles: angles down to 1e-10 deg), on the regular
-    // tetrahedron (six equal angles) and on ones with repeated or
-    // collinear corners (zero angles).
+    // angle by signs and take the arctangent of that one only;
+    // dihedral_angles takes all six. They must give the same doubles as
+    // the smallest and largest of the six: on random tetrahedra flattened
+    // toward a face or squashed along z (slivers, caps, needles: angles
+    // down to 1e-10 deg), on the regular tetrahedron (six equal angles)
+    // and on ones with repeated or collinear corners (angles of 0 and 180
+    // deg, where the sign of the sine alone cannot tell them apart).
     RandomTets tets(777);
     const auto same = [](const double (&p)[4][3]) {
         std::array<double, 6> six{};
