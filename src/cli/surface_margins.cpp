@@ -12,12 +12,9 @@
 namespace cbr::cli {
 namespace {
 
-const double* at(const std::vector<double>& xyz, std::int64_t id) { return &xyz[3 * static_cast<std::size_t>(id)]; }
+using geom::squared_distance;
 
-double squared_distance(const double* p, const double* q) {
-    const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-    return geom::dot(d, d);
-}
+const double* at(const std::vector<double>& xyz, std::int64_t id) { return &xyz[3 * static_cast<std::size_t>(id)]; }
 
 }  // namespace
 

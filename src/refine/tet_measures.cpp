@@ -115,17 +115,25 @@ double degrees_of(const std::array<double, 6>& sine, const std::array<double, 6>
     return std::atan2(sine[i], cosine[i]) * (180 / kPi);
 }
 
+// dihedral_pairs of abcd from its unit edges; false when it has no extent
+// in double (unit_edges).
+bool dihedral_pairs(const double* a, const double* b, const double* c, const double* d, std::array<double, 6>& sine,
+                    std::array<double, 6>& cosine) {
+    V u, v, w;
+    if (!unit_edges(a, b, c, d, u, v, w)) return false;
+    dihedral_pairs(u, v, w, sine, cosine);
+    return true;
+}
+
 }  // namespace
 
 bool dihedral_angles(const double* a, const double* b, const double* c, const double* d,
                      std::array<double, 6>& deg) {
-    V u, v, w;
-    if (!unit_edges(a, b, c, d, u, v, w)) {
+    std::array<double, 6> sine, cosine;
+    if (!dihedral_pairs(a, b, c, d, sine, cosine)) {
         deg.fill(0);
         return false;
     }
-    std::array<double, 6> sine, cosine;
-    dihedral_pairs(u, v, w, sine, cosine);
     for (std::size_t i = 0; i < 6; ++i) deg[i] = degrees_of(sine, cosine, i);
     return true;
 }
@@ -139,13 +147,11 @@ bool dihedral_angles(const double* a, const double* b, const double* c, const do
 // (test_refine).
 void dihedral_range(const double* a, const double* b, const double* c, const double* d, double& min_deg,
                     double& max_deg) {
-    V u, v, w;
-    if (!unit_edges(a, b, c, d, u, v, w)) {
+    std::array<double, 6> sine, cosine;
+    if (!dihedral_pairs(a, b, c, d, sine, cosine)) {
         min_deg = max_deg = 0;
         return;
     }
-    std::array<double, 6> sine, cosine;
-    dihedral_pairs(u, v, w, sine, cosine);
     std::size_t smallest = 0, largest = 0;
     for (std::size_t i = 1; i < 6; ++i) {
         if (angle_below(sine, cosine, i, smallest)) smallest = i;
@@ -157,10 +163,8 @@ void dihedral_range(const double* a, const double* b, const double* c, const dou
 
 // dihedral_range's minimum alone: one arctangent.
 double min_dihedral(const double* a, const double* b, const double* c, const double* d) {
-    V u, v, w;
-    if (!unit_edges(a, b, c, d, u, v, w)) return 0;
     std::array<double, 6> sine, cosine;
-    dihedral_pairs(u, v, w, sine, cosine);
+    if (!dihedral_pairs(a, b, c, d, sine, cosine)) return 0;
     std::size_t smallest = 0;
     for (std::size_t i = 1; i < 6; ++i)
         if (angle_below(sine, cosine, i, smallest)) smallest = i;
@@ -220,11 +224,6 @@ bool triangle_circumsphere(const double* a, const double* b, const double* c, Po
     for (int k = 0; k < 3; ++k) centre[k] = a[k] + r[k];
     radius2 = dot(r, r);
     return std::isfinite(radius2);
-}
-
-double squared_distance(const double* p, const double* q) {
-    const V d = sub(p, q);
-    return dot(d, d);
 }
 
 double radius_edge_ratio(const double* a, const double* b, const double* c, const double* d) {

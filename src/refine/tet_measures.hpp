@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geom/vec3.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::refine {
@@ -93,7 +94,7 @@ bool circumcentre(const double* a, const double* b, const double* c, const doubl
 // Circumcentre and squared circumradius of triangle abc; false when flat.
 bool triangle_circumsphere(const double* a, const double* b, const double* c, Point& centre, double& radius2);
 
-double squared_distance(const double* p, const double* q);
+using geom::squared_distance;  // geom/vec3.hpp
 
 // Apex candidates over triangle (a, b, d): points above its centroid, on
 // the side (b - a) x (d - a) points to, at each of `heights` times its mean
