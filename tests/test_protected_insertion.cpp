@@ -262,6 +262,62 @@ TEST_CASE("an insertion is undone by putting its cavity back in the star's slots
     CHECK(undone > 30);
 }
 
+TEST_CASE("an insertion whose cavity outnumbers its star is undone into the same tetrahedra") {
+    // Points near a sphere, then its centre: every circumsphere holds the
+    // centre, so the cavity is every finite tetrahedron (about 150), and
+    // the star, one tetrahedron per hull face (116), has fewer. undo_last
+    // then gives back the same tetrahedra, the first ones in the star's
+    // slots and only the surplus elsewhere: a caller that keeps tetrahedron
+    // ids across an undo (unblocking points) must know which case it had.
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<double> xyz;
+    for (int i = 0; i < 60; ++i) {
+        const double v[3] = {unit(rng), unit(rng), unit(rng)};
+        const double r = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * (1 + 1e-3 * unit(rng));
+        for (double c : v) xyz.push_back(c / r);
+    }
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(xyz.data(), 60).ok);
+    TetMesh& m = d.mesh_for_update();
+    const auto live = [&] {
+        std::map<TetId, std::array<VertexId, 4>> out;
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            if (!m.is_free(t)) out[t] = {m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)};
+        return out;
+    };
+    const auto before = live();
+    const std::size_t vertices = m.vertex_count();
+    const double centre[3] = {0, 0, 0};
+    const VertexId p = add_point(m, centre);
+    const TetId start = locate(m, m.point(p));
+    REQUIRE(start != kNoTet);
+    cbr::recover::ProtectedInserter inserter;
+    const ProtectedInsertResult res = inserter.insert(m, p, start);
+    REQUIRE(res.ok);
+    REQUIRE(res.cavity.size() > res.created.size());
+    std::vector<TetId> restored;
+    inserter.undo_last(m, p, restored);
+    CHECK(m.vertex_count() == vertices);
+    REQUIRE(restored.size() == res.cavity.size());
+    CHECK(std::equal(res.created.begin(), res.created.end(), restored.begin()));
+    const auto after = live();
+    // The same tetrahedra (as vertex lists), and no slot changed but those
+    // of the surplus.
+    std::multiset<std::array<VertexId, 4>> tets_before, tets_after;
+    for (const auto& [t, v] : before) tets_before.insert(v);
+    for (const auto& [t, v] : after) tets_after.insert(v);
+    CHECK(tets_after == tets_before);
+    std::size_t moved = 0;
+    for (const auto& [t, v] : before) {
+        const auto it = after.find(t);
+        if (it == after.end() || it->second != v) ++moved;
+    }
+    CHECK(moved <= res.cavity.size() - res.created.size());
+    const CheckReport rep = check_mesh(m);
+    REQUIRE_MESSAGE(rep.ok(), (rep.errors.empty() ? std::string() : rep.errors[0]));
+}
+
 namespace {
 // Random points plus a layer exactly on z = 0.5 whose in-plane Delaunay
 // faces serve as constraint faces with an exactly representable plane.

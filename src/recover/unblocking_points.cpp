@@ -115,7 +115,7 @@ private:
 
     // The finite tetrahedra the closed segment ab meets other than at a or b
     // (from a's ball outwards, never across a constraint face), nearest
-    // `target` first.
+    // `target` first (nullptr: in the order found, d2 0; for a count).
     std::vector<Met> met_tets(VertexId a, VertexId b, const double* target) {
         const double* pa = m_.point(a);
         const double* pb = m_.point(b);
@@ -143,19 +143,27 @@ private:
                 near.push_back(n);
             }
             if (!met) continue;
+            if (target == nullptr) {
+                out.push_back({0, t});
+                continue;
+            }
             double c[3];
             centroid(m_, t, c);
             const double d[3] = {c[0] - target[0], c[1] - target[1], c[2] - target[2]};
             out.push_back({dot(d, d), t});
         }
-        std::sort(out.begin(), out.end(), [](const Met& x, const Met& y) { return x.d2 < y.d2; });
+        if (target == nullptr) return out;
+        // Ties by id: the order is then a function of the mesh alone, not of
+        // the walk from incident_[a], so that a list kept across points
+        // tried and undone (unblock_edge) is the one a new search would give.
+        std::sort(out.begin(), out.end(),
+                  [](const Met& x, const Met& y) { return x.d2 < y.d2 || (x.d2 == y.d2 && x.tet < y.tet); });
         return out;
     }
 
     std::size_t met_count(VertexId a, VertexId b) {
         if (edge_exists(a, b)) return 0;
-        const double* pa = m_.point(a);
-        return met_tets(a, b, pa).size();
+        return met_tets(a, b, nullptr).size();
     }
 
     // Points off face `tri` near its missing edge ab; see the header.
@@ -186,12 +194,19 @@ private:
         for (std::size_t i = 0; i < targets && count > 0; ++i) {
             const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
             const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
+            // Found again only when a point tried here moved tetrahedra to
+            // other slots: a point not kept leaves the same tetrahedra, and
+            // nearly always in the same slots (undo_last_insertion).
+            std::vector<Met> met_here;
+            bool met_known = false;
             bool kept = false;
             for (double d = length / 4; d >= clearance && !kept; d /= 2)
                 for (const double dir : {first, -first}) {
                     const double p[3] = {on_edge[0] + dir * d * n[0], on_edge[1] + dir * d * n[1],
                                          on_edge[2] + dir * d * n[2]};
-                    if (try_point(a, b, on_edge, p, clearance, count, steiner)) {
+                    if (!met_known) met_here = met_tets(a, b, on_edge);
+                    met_known = true;
+                    if (try_point(a, b, met_here, p, clearance, count, steiner, met_known)) {
                         kept = true;
                         break;
                     }
@@ -202,10 +217,12 @@ private:
     // Inserts p if it passes the tests and ab then meets fewer than `count`
     // tetrahedra (count updated) with a star of at most options_.max_star
     // tetrahedra; otherwise leaves the mesh as it was (and counts a point
-    // that only its star kept out).
-    bool try_point(VertexId a, VertexId b, const double* target, const double* p, double clearance,
-                   std::size_t& count, std::vector<VertexId>& steiner) {
-        const std::vector<Met> met = met_tets(a, b, target);
+    // that only its star kept out). `met`: the tetrahedra ab meets now,
+    // nearest p's target on ab first (met_tets); `met_known` turns false
+    // when that list no longer names them (p was kept, or undone into
+    // other slots).
+    bool try_point(VertexId a, VertexId b, const std::vector<Met>& met, const double* p, double clearance,
+                   std::size_t& count, std::vector<VertexId>& steiner, bool& met_known) {
         if (met.empty()) return false;
         const TetId at = walk(met.front().tet, p);
         if (at == kNoTet || near_missing_face(p, clearance) || !conflicts_reach(at, p, met)) return false;
@@ -214,22 +231,30 @@ private:
         const std::size_t after = met_count(a, b);
         if ((after < count || options_.keep_first) && star <= options_.max_star) {
             count = std::min(after, count);
+            met_known = false;
             return true;
         }
         if (after < count) ++result_.refused_for_star;
-        undo_last_insertion(steiner);
+        if (!undo_last_insertion(steiner)) met_known = false;
         return false;
     }
 
     // The star of the last point inserted goes back to the cavity it
-    // replaced (the cavity's slots as they were), and the point goes.
-    void undo_last_insertion(std::vector<VertexId>& steiner) {
+    // replaced, and the point goes. Returns whether every tetrahedron of
+    // the cavity is back in its own slot: the star took the cavity's slots
+    // first and gives them back in the same order, so all of them are
+    // unless the star had fewer tetrahedra than the cavity (then the
+    // surplus come back in other free slots).
+    bool undo_last_insertion(std::vector<VertexId>& steiner) {
+        const ProtectedInsertResult& last = inserter_.last();
+        const bool same_slots = last.created.size() >= last.cavity.size();
         std::vector<TetId> restored;
         inserter_.undo_last(m_, steiner.back(), restored);
         for (TetId t : restored)
             for (int i = 0; i < 4; ++i)
                 if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
         steiner.pop_back();
+        return same_slots;
     }
 
     // The finite tetrahedra whose circumspheres hold p, connected to `at`
