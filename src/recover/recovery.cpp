@@ -200,6 +200,15 @@ constexpr UnblockingTry kUnblockingTries[] = {
     // points) lets the flips recover every face, with no conforming point
     // (TetGen recovers it too).
     {first_kept(kDenseUnblocking), false, 3},
+    // Then the same with the default points, sparser and farther from the
+    // faces: the two densities fail on different plates. The guide arm
+    // turned by seed 91 fails with the dense points in every attempt
+    // (splitting an added point on the plate's last 2 faces: "no Steiner
+    // point position sees the whole wedge") and recovers with these in its
+    // first attempt, 5 Steiner points inside (TetGen 52; denser points,
+    // one every 2 tetrahedra, recover it too), where seed 41 recovers with
+    // the dense points only.
+    {first_kept(UnblockingOptions{}), false, 3},
 };
 
 static_assert(std::size(kUnblockingTries) == static_cast<std::size_t>(RecoveryOptions{}.unblocking_tries),

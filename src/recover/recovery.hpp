@@ -61,11 +61,11 @@ struct RecoveryOptions {
     // After a failure: again from the mesh the flips left with other
     // unblocking points (recovery.cpp, kUnblockingTries: without the star
     // limit when it turned points away, then denser points nearer the
-    // faces, then those kept even where they do not cut the crossings);
-    // at most this many of those tries in all (the first is the
-    // default). Not in the C API: tests lower it to reach the failures of
-    // the first tries.
-    int unblocking_tries = 5;
+    // faces, then the dense and the default points kept even where they do
+    // not cut the crossings); at most this many of those tries in all (the
+    // first is the default). Not in the C API: tests lower it to reach the
+    // failures of the first tries.
+    int unblocking_tries = 6;
     // Which ring vertices the flips' nested edge removals try first
     // (flip_recovery.hpp). Not in the C API: tests set kRing to reach the
     // mesh states that the later steps were made for.
