@@ -526,12 +526,13 @@ void ProtectedInserter::set_full_rounds(bool full) { scratch_->full_rounds = ful
 
 const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->result; }
 
-void ProtectedInserter::undo_last(TetMesh& m, VertexId p, std::vector<TetId>& restored) {
+bool ProtectedInserter::undo_last(TetMesh& m, VertexId p, std::vector<TetId>& restored) {
     const ProtectedInsertResult& r = scratch_->result;
     if (!r.ok || std::size_t{p} + 1 != m.vertex_count() ||
         mesh::replace_tets(m, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone)
         throw InternalError("protected insertion: the cavity of an undone point could not be put back");
     m.truncate_vertices(p);
+    return r.created.size() >= r.cavity.size();
 }
 
 const ProtectedInsertResult& ProtectedInserter::insert(TetMesh& m, VertexId p, TetId start,

@@ -80,12 +80,12 @@ public:
     const ProtectedInsertResult& last() const;
     // Undoes the last insertion, which succeeded, of point p (the mesh's
     // last vertex): its star goes back to the cavity it replaced and p
-    // goes. The cavity's tetrahedra come back in their own slots when the
-    // star had at least as many (it took the cavity's slots first); of a
-    // larger cavity, those beyond the star's count come back in other free
-    // slots. `restored`: the tetrahedra put back. Throws InternalError when
-    // the star is no longer in the mesh.
-    void undo_last(mesh::TetMesh& m, mesh::VertexId p, std::vector<mesh::TetId>& restored);
+    // goes. `restored`: the tetrahedra put back. Returns whether each is
+    // back in its own slot: true when the star had at least as many
+    // tetrahedra (it took the cavity's slots first); of a larger cavity,
+    // those beyond the star's count come back in other free slots. Throws
+    // InternalError when the star is no longer in the mesh.
+    bool undo_last(mesh::TetMesh& m, mesh::VertexId p, std::vector<mesh::TetId>& restored);
     const ProtectedInsertResult& insert_in_cavity(mesh::TetMesh& m, mesh::VertexId p, mesh::TetId start,
                                                   const std::vector<mesh::TetId>& cavity,
                                                   const BlockedFace& blocked = {}, bool keep_seed = false);

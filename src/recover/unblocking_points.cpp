@@ -194,9 +194,9 @@ private:
         for (std::size_t i = 0; i < targets && count > 0; ++i) {
             const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
             const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
-            // Found again only when a point tried here moved tetrahedra to
-            // other slots: a point not kept leaves the same tetrahedra, and
-            // nearly always in the same slots (undo_last_insertion).
+            // Found again only when a point tried here was kept or moved
+            // tetrahedra to other slots: a point not kept leaves the same
+            // tetrahedra, mostly in the same slots (undo_last_insertion).
             std::vector<Met> met_here;
             bool met_known = false;
             bool kept = false;
@@ -241,15 +241,10 @@ private:
 
     // The star of the last point inserted goes back to the cavity it
     // replaced, and the point goes. Returns whether every tetrahedron of
-    // the cavity is back in its own slot: the star took the cavity's slots
-    // first and gives them back in the same order, so all of them are
-    // unless the star had fewer tetrahedra than the cavity (then the
-    // surplus come back in other free slots).
+    // the cavity is back in its own slot (ProtectedInserter::undo_last).
     bool undo_last_insertion(std::vector<VertexId>& steiner) {
-        const ProtectedInsertResult& last = inserter_.last();
-        const bool same_slots = last.created.size() >= last.cavity.size();
         std::vector<TetId> restored;
-        inserter_.undo_last(m_, steiner.back(), restored);
+        const bool same_slots = inserter_.undo_last(m_, steiner.back(), restored);
         for (TetId t : restored)
             for (int i = 0; i < 4; ++i)
                 if (m_.vertex(t, i) != kGhostVertex) incident_[m_.vertex(t, i)] = t;
