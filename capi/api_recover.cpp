@@ -45,13 +45,17 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
 
 // One attempt of recovery from the Delaunay mesh as it is now, from the
 // flip state `state` (its budget 0: the caller's; another budget also
-// tries only the plain unblocking points, kRetryUnblockingTries). The
-// flips may run again from the Delaunay mesh (recovery.cpp,
-// kFlipRestartShare): rebuild() gives it back, bit for bit.
+// tries only the plain unblocking points, kRetryUnblockingTries); a retry
+// (`first` false) leaves out the last unblocking try
+// (kRetryLastUnblockingTries). The flips may run again from the Delaunay
+// mesh (recovery.cpp, kFlipRestartShare): rebuild() gives it back, bit
+// for bit.
 cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
-                                     const cbr::recover::FlipState& state, cbr::recover::RecoveryStats& stats) {
+                                     const cbr::recover::FlipState& state, bool first,
+                                     cbr::recover::RecoveryStats& stats) {
     cbr::recover::RecoveryOptions options = mesh.recovery_options;
     options.nested_order = state.nested;
+    if (!first) options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryLastUnblockingTries);
     if (state.deepest_budget != 0) {
         options.deepest_flip_budget = state.deepest_budget;
         options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryUnblockingTries);
@@ -121,7 +125,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
     const std::vector<double> box = enclosing_box(mesh.delaunay.mesh());
     const auto box_first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
     const cbr::recover::FlipState as_given{0, options.nested_order};
-    cbr::recover::RecoveryResult first = attempt(mesh, faces, as_given, stats);
+    cbr::recover::RecoveryResult first = attempt(mesh, faces, as_given, true, stats);
     if (first.ok || !first.invalid.empty() || !options.retries) return first;
     std::optional<std::string> boxed_why;  // the first boxed attempt's reason, for the message
     // An attempt that ends the attempts (a success, or a broken invariant)
@@ -139,7 +143,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
         for (const cbr::recover::FlipState& state : states) {
             mesh.delaunay.rebuild();
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, false, attempt_stats);
             if (ends(r, attempt_stats)) return true;
         }
         return false;
@@ -156,7 +160,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
             if (!inserted || state.deepest_budget != 0) mesh.delaunay.rebuild();
             inserted = false;
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, false, attempt_stats);
             if (r.ok) {
                 ends(r, attempt_stats);
                 stats.steiner_generated += 8;

@@ -58,6 +58,9 @@ struct UnblockingOptions {
 // recover what conforming recovery failed on: 3 of the 273 turned copies
 // that failed in every retry before recover so (recovery.cpp).
 constexpr UnblockingOptions kDenseUnblocking{kUnblockingMaxStar, 4, 0.05, false};
+// Denser still, as near: one point every 2 tetrahedra a missing edge
+// meets (recovery's last try, kept where they do not cut).
+constexpr UnblockingOptions kDensestUnblocking{kUnblockingMaxStar, 2, 0.05, false};
 
 struct UnblockingResult {
     std::size_t kept = 0;              // points kept (appended to the Steiner list)
