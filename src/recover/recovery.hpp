@@ -62,9 +62,9 @@ struct RecoveryOptions {
     // unblocking points (recovery.cpp, kUnblockingTries: without the star
     // limit when it turned points away, then denser points nearer the
     // faces, then the dense and the densest points kept even where they
-    // do not cut the crossings); at most this many of those tries in all (the
-    // first is the default). Not in the C API: tests lower it to reach the
-    // failures of the first tries.
+    // do not cut the crossings); at most this many of those tries in all
+    // (the first is the default). Not in the C API: tests lower it to
+    // reach the failures of the first tries.
     int unblocking_tries = 6;
     // Which ring vertices the flips' nested edge removals try first
     // (flip_recovery.hpp). Not in the C API: tests set kRing to reach the
@@ -101,11 +101,11 @@ inline constexpr int kRetryUnblockingTries = 2;
 
 // The unblocking tries of the retries in the other states with the
 // options' budget (inside the enclosing box, the ring order): all but the
-// last, the densest points kept where they do not cut. The copies it
-// recovers (turned or jittered CAD plates) recover in the first attempt;
-// on the turned feeder body, which fails in every attempt, it took the
-// time to fail from 127 to 168 s when every such attempt had it (12.7 s
-// of it in the first).
+// last, the densest points kept where they do not cut. The copies that
+// try recovers (turned or jittered CAD plates) recover in the first
+// attempt; on the turned feeder body, which fails in every attempt, it
+// took the time to fail from 127 to 168 s when every such attempt had
+// it, and costs 1 s in the first attempt alone (11.7 -> 12.7 s).
 inline constexpr int kRetryLastUnblockingTries = 5;
 
 // Recovers every triangle of `faces` as a face of m, marking them as
