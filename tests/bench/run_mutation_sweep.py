@@ -21,7 +21,8 @@ that volume check fails; those are listed apart.
   --cases N       number of cases (default 200)
   --seed S        seed of the sweep (default 1; same seed, same cases)
   --timeout S     seconds allowed to each run (default 120)
-  --keep DIR      copy every listed case's OFF into DIR
+  --keep DIR      copy every listed case's OFF (bugs and recovery
+                  failures) into DIR
   SURFACE...      names in the shared data (default: the 13 small ones of
                   SMALL_SURFACES); the data directory is
                   $CBR_SHARED_DATA_DIR/surfaces or ../shared/data/surfaces
@@ -171,7 +172,7 @@ def main():
     rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="cbr-mutation-sweep.")
     counts = {kind: {"cases": 0, "ok": 0, "rejected": 0, "failed": 0, "bug": 0} for kind in MUTATIONS}
-    bugs, approximate = [], []
+    bugs, approximate, failures = [], [], []
     try:
         for case in range(args.cases):
             name, kind = rng.choice(names), rng.choice(MUTATIONS)
@@ -203,11 +204,13 @@ def main():
             if problem:
                 c["bug"] += 1
                 bugs.append((os.path.basename(surface), command, problem))
-                if args.keep:
-                    os.makedirs(args.keep, exist_ok=True)
-                    shutil.copy(surface, args.keep)
             else:
                 c[{0: "ok", 2: "rejected", 3: "failed"}[rc]] += 1
+                if rc == 3:  # allowed, but worth a look: TetGen may recover it
+                    failures.append((os.path.basename(surface), command, err.strip().splitlines()[0][:300]))
+            if args.keep and (problem or rc == 3):
+                os.makedirs(args.keep, exist_ok=True)
+                shutil.copy(surface, args.keep)
             if os.path.exists(mesh):
                 os.remove(mesh)
             os.remove(surface)
@@ -229,6 +232,8 @@ def main():
           f"**{total['bug']}** |")
     if approximate:
         print(f"\ncbr-verify's volume of the input is approximate (non-manifold) and off for: {', '.join(approximate)}")
+    for surface, command, message in failures:
+        print(f"\nrecovery failed: {surface} (cbr {command}): {message}")
     for surface, command, problem in bugs:
         print(f"\nBUG {surface} (cbr {command}): {problem}")
     return 1 if bugs else 0
