@@ -217,8 +217,6 @@ constexpr UnblockingTry kUnblockingTries[] = {
 
 static_assert(std::size(kUnblockingTries) == static_cast<std::size_t>(RecoveryOptions{}.unblocking_tries),
               "by default every unblocking try may run");
-static_assert(kRetryLastUnblockingTries + 1 == RecoveryOptions{}.unblocking_tries,
-              "the retries leave out exactly the last unblocking try");
 
 // unblock_then_split with each of the first options.unblocking_tries of
 // kUnblockingTries in turn, from the mesh the flips left, until one

@@ -106,7 +106,7 @@ inline constexpr int kRetryUnblockingTries = 2;
 // attempt; on the turned feeder body, which fails in every attempt, it
 // took the time to fail from 127 to 168 s when every such attempt had
 // it, and costs 1 s in the first attempt alone (11.7 -> 12.7 s).
-inline constexpr int kRetryLastUnblockingTries = 5;
+inline constexpr int kRetryLastUnblockingTries = RecoveryOptions{}.unblocking_tries - 1;
 
 // Recovers every triangle of `faces` as a face of m, marking them as
 // constraint faces. Steiner points are appended to m's vertices; ids below

@@ -194,9 +194,9 @@ private:
         for (std::size_t i = 0; i < targets && count > 0; ++i) {
             const double s = (static_cast<double>(i) + 0.5) / static_cast<double>(targets);
             const double on_edge[3] = {pa[0] + s * ab[0], pa[1] + s * ab[1], pa[2] + s * ab[2]};
-            // Found again only when a point tried here was kept or moved
-            // tetrahedra to other slots: a point not kept leaves the same
-            // tetrahedra, mostly in the same slots (undo_last_insertion).
+            // Found once for the target's tries, and again only when a point
+            // not kept moved tetrahedra to other slots (undo_last_insertion);
+            // a kept point ends them.
             std::vector<Met> met_here;
             bool met_known = false;
             bool kept = false;
@@ -204,8 +204,10 @@ private:
                 for (const double dir : {first, -first}) {
                     const double p[3] = {on_edge[0] + dir * d * n[0], on_edge[1] + dir * d * n[1],
                                          on_edge[2] + dir * d * n[2]};
-                    if (!met_known) met_here = met_tets(a, b, on_edge);
-                    met_known = true;
+                    if (!met_known) {
+                        met_here = met_tets(a, b, on_edge);
+                        met_known = true;
+                    }
                     if (try_point(a, b, met_here, p, clearance, count, steiner, met_known)) {
                         kept = true;
                         break;
@@ -219,8 +221,8 @@ private:
     // tetrahedra; otherwise leaves the mesh as it was (and counts a point
     // that only its star kept out). `met`: the tetrahedra ab meets now,
     // nearest p's target on ab first (met_tets); `met_known` turns false
-    // when that list no longer names them (p was kept, or undone into
-    // other slots).
+    // when p, not kept, was undone into other slots (the list then no
+    // longer names them).
     bool try_point(VertexId a, VertexId b, const std::vector<Met>& met, const double* p, double clearance,
                    std::size_t& count, std::vector<VertexId>& steiner, bool& met_known) {
         if (met.empty()) return false;
@@ -231,7 +233,6 @@ private:
         const std::size_t after = met_count(a, b);
         if ((after < count || options_.keep_first) && star <= options_.max_star) {
             count = std::min(after, count);
-            met_known = false;
             return true;
         }
         if (after < count) ++result_.refused_for_star;

@@ -111,6 +111,14 @@ bool angle_below(const std::array<double, 6>& sine, const std::array<double, 6>&
     return difference != 0 ? difference < 0 : cosine[i] > cosine[j];
 }
 
+// The smallest of the six angles (angle_below).
+std::size_t smallest_angle(const std::array<double, 6>& sine, const std::array<double, 6>& cosine) {
+    std::size_t smallest = 0;
+    for (std::size_t i = 1; i < 6; ++i)
+        if (angle_below(sine, cosine, i, smallest)) smallest = i;
+    return smallest;
+}
+
 double degrees_of(const std::array<double, 6>& sine, const std::array<double, 6>& cosine, std::size_t i) {
     return std::atan2(sine[i], cosine[i]) * (180 / kPi);
 }
@@ -152,12 +160,10 @@ void dihedral_range(const double* a, const double* b, const double* c, const dou
         min_deg = max_deg = 0;
         return;
     }
-    std::size_t smallest = 0, largest = 0;
-    for (std::size_t i = 1; i < 6; ++i) {
-        if (angle_below(sine, cosine, i, smallest)) smallest = i;
+    std::size_t largest = 0;
+    for (std::size_t i = 1; i < 6; ++i)
         if (angle_below(sine, cosine, largest, i)) largest = i;
-    }
-    min_deg = degrees_of(sine, cosine, smallest);
+    min_deg = degrees_of(sine, cosine, smallest_angle(sine, cosine));
     max_deg = degrees_of(sine, cosine, largest);
 }
 
@@ -165,10 +171,7 @@ void dihedral_range(const double* a, const double* b, const double* c, const dou
 double min_dihedral(const double* a, const double* b, const double* c, const double* d) {
     std::array<double, 6> sine, cosine;
     if (!dihedral_pairs(a, b, c, d, sine, cosine)) return 0;
-    std::size_t smallest = 0;
-    for (std::size_t i = 1; i < 6; ++i)
-        if (angle_below(sine, cosine, i, smallest)) smallest = i;
-    return degrees_of(sine, cosine, smallest);
+    return degrees_of(sine, cosine, smallest_angle(sine, cosine));
 }
 
 double oriented_min_dihedral(const double* a, const double* b, const double* c, const double* d) {
