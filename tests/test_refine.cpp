@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -507,6 +508,44 @@ TEST_CASE("refine: min_dihedral and dihedral_range pick the extreme angles, bit 
     CHECK(same(collinear));
     MESSAGE("smallest angle seen " << tiniest << " deg; differing " << differ);
     CHECK(tiniest < 1e-9);
+    CHECK(differ == 0);
+}
+
+TEST_CASE("refine: radius ratios two at a time are the scalar ones, bit for bit") {
+    // radius_ratios (smoothing's ball ratings) computes two tetrahedra per
+    // SSE2 instruction; each must round exactly as radius_ratio does, or
+    // smoothing would pick other points. Random slivers, caps and needles,
+    // the same scaled to 1e-150 and 1e150 (one lane, or both, on the
+    // scaled fallback), and tetrahedra with a repeated corner (q = 0); an
+    // odd count, so the last one goes alone.
+    RandomTets random(4242);
+    cbr::mesh::TetMesh m;
+    std::vector<cbr::mesh::TetId> tets;
+    const auto add = [&](const double (&p)[4][3], double scale) {
+        double scaled[4][3];
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k < 3; ++k) scaled[i][k] = scale * p[i][k];
+        const auto first = static_cast<cbr::mesh::VertexId>(m.add_points(&scaled[0][0], 4));
+        const cbr::mesh::TetId t = m.allocate_tet();
+        m.set_vertices(t, first, first + 1, first + 2, first + 3);
+        tets.push_back(t);
+    };
+    for (int it = 0; it < 20001; ++it) {
+        double p[4][3];
+        random.next(it, 12, p);
+        if (it % 97 == 5) std::copy(p[1], p[1] + 3, p[2]);  // a repeated corner
+        add(p, it % 7 == 3 ? 1e-150 : it % 11 == 4 ? 1e150 : 1.0);
+    }
+    std::vector<double> paired(tets.size(), -1);
+    cbr::refine::radius_ratios(m, tets.data(), tets.size(), paired.data());
+    std::size_t differ = 0, zero = 0;
+    for (std::size_t i = 0; i < tets.size(); ++i) {
+        const double one = cbr::refine::radius_ratio(m, tets[i]);
+        differ += std::memcmp(&one, &paired[i], sizeof one) != 0;
+        zero += one == 0;
+    }
+    MESSAGE(tets.size() << " tetrahedra, " << zero << " with q = 0, " << differ << " differing");
+    CHECK(zero >= 200);
     CHECK(differ == 0);
 }
 

@@ -6,6 +6,10 @@
 
 #include "geom/predicates.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace cbr::refine {
 namespace {
 
@@ -74,6 +78,84 @@ double radius_ratio(const double* a, const double* b, const double* c, const dou
     }
     if (!std::isfinite(q)) return 0;
     return std::clamp(q, 0.0, 1.0);
+}
+
+#if defined(__SSE2__)
+namespace {
+
+// radius_ratio_of for two tetrahedra, one per lane: every operation of the
+// scalar code, in its order (no fused multiply-add: -ffp-contract=off), so
+// each lane rounds exactly as radius_ratio does.
+struct Lanes3 {
+    __m128d x, y, z;
+};
+inline Lanes3 sub2(const Lanes3& p, const Lanes3& q) {
+    return {_mm_sub_pd(p.x, q.x), _mm_sub_pd(p.y, q.y), _mm_sub_pd(p.z, q.z)};
+}
+inline __m128d dot2(const Lanes3& p, const Lanes3& q) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(p.x, q.x), _mm_mul_pd(p.y, q.y)), _mm_mul_pd(p.z, q.z));
+}
+inline __m128d len2(const Lanes3& p) { return _mm_sqrt_pd(dot2(p, p)); }
+inline Lanes3 cross2(const Lanes3& p, const Lanes3& q) {
+    return {_mm_sub_pd(_mm_mul_pd(p.y, q.z), _mm_mul_pd(p.z, q.y)),
+            _mm_sub_pd(_mm_mul_pd(p.z, q.x), _mm_mul_pd(p.x, q.z)),
+            _mm_sub_pd(_mm_mul_pd(p.x, q.y), _mm_mul_pd(p.y, q.x))};
+}
+inline Lanes3 corner2(const double* first, const double* second) {
+    return {_mm_set_pd(second[0], first[0]), _mm_set_pd(second[1], first[1]), _mm_set_pd(second[2], first[2])};
+}
+
+// out[k] = radius_ratio of tetrahedron k (k = 0, 1), given by its corners.
+void radius_ratio_pair(const double* const first[4], const double* const second[4], double out[2]) {
+    const Lanes3 a = corner2(first[0], second[0]);
+    const Lanes3 u = sub2(corner2(first[1], second[1]), a);
+    const Lanes3 v = sub2(corner2(first[2], second[2]), a);
+    const Lanes3 w = sub2(corner2(first[3], second[3]), a);
+    const Lanes3 vw = cross2(v, w), wu = cross2(w, u), uv = cross2(u, v);
+    const __m128d det = dot2(u, vw);
+    const __m128d area2 = _mm_add_pd(_mm_add_pd(_mm_add_pd(len2(uv), len2(wu)), len2(vw)),
+                                     len2(cross2(sub2(v, u), sub2(w, u))));
+    const __m128d uu = dot2(u, u), vv = dot2(v, v), ww = dot2(w, w);
+    const auto mix = [&](__m128d p, __m128d q, __m128d r) {
+        return _mm_add_pd(_mm_add_pd(_mm_mul_pd(uu, p), _mm_mul_pd(vv, q)), _mm_mul_pd(ww, r));
+    };
+    const Lanes3 n = {mix(vw.x, wu.x, uv.x), mix(vw.y, wu.y, uv.y), mix(vw.z, wu.z, uv.z)};
+    const __m128d denominator = _mm_mul_pd(area2, len2(n));
+    const __m128d q = _mm_div_pd(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(6), det), det), denominator);
+    double lanes[2], denominators[2];
+    _mm_storeu_pd(lanes, q);
+    _mm_storeu_pd(denominators, denominator);
+    const double* const* corners[2] = {first, second};
+    for (int k = 0; k < 2; ++k) {
+        const double d = denominators[k];
+        if (!(d >= 1e-280 && d <= 1e280)) {  // the scalar path scales the edges
+            const double* const* c = corners[k];
+            out[k] = radius_ratio(c[0], c[1], c[2], c[3]);
+        } else {
+            out[k] = std::isfinite(lanes[k]) ? std::clamp(lanes[k], 0.0, 1.0) : 0;
+        }
+    }
+}
+
+}  // namespace
+#endif
+
+void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out) {
+    const auto corners = [&](mesh::TetId t, const double* c[4]) {
+        const mesh::VertexId* v = m.vertices(t);
+        for (int i = 0; i < 4; ++i) c[i] = m.point(v[i]);
+    };
+    std::size_t k = 0;
+#if defined(__SSE2__)
+    for (; k + 1 < count; k += 2) {
+        const double* first[4];
+        const double* second[4];
+        corners(tets[k], first);
+        corners(tets[k + 1], second);
+        radius_ratio_pair(first, second, out + k);
+    }
+#endif
+    for (; k < count; ++k) out[k] = radius_ratio(m, tets[k]);
 }
 
 double oriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {
