@@ -297,20 +297,23 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
         r.smallest = first_angle;
         return r;
     }
-    qualities_.clear();
-    for (TetId t : ball_) {
-        const VertexId* w = m_.vertices(t);
-        const double* a = m_.point(w[0]);
-        const double* b = m_.point(w[1]);
-        const double* c = m_.point(w[2]);
-        const double* d = m_.point(w[3]);
-        if (geom::orient3d(a, b, c, d) <= 0) return r;
-        const double q = radius_ratio(a, b, c, d);
-        qualities_.push_back(q);
+    // Every tetrahedron positively oriented (exact), then the radius
+    // ratios two at a time (radius_ratios); an inverted one leaves r as
+    // the ratios before it made it.
+    std::size_t valid = 0;
+    while (valid < ball_.size()) {
+        const VertexId* w = m_.vertices(ball_[valid]);
+        if (geom::orient3d(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) <= 0) break;
+        ++valid;
+    }
+    qualities_.resize(valid);
+    radius_ratios(m_, ball_.data(), valid, qualities_.data());
+    for (const double q : qualities_) {
         r.worst_q = std::min(r.worst_q, q);
         r.sum_q += q;
         r.under += q < keep_radius_ratio;
     }
+    if (valid < ball_.size()) return r;
     double smallest = first_angle;
     smallest_at_ = first;
     double q_bound = radius_ratio_bound_for_dihedral(smallest);
