@@ -24,6 +24,31 @@ V mul(const V& p, double s) { return {p[0] * s, p[1] * s, p[2] * s}; }
 
 constexpr double kPi = 3.14159265358979323846;
 
+#if defined(__SSE2__)
+// Two vectors at once, one per lane of SSE2 registers: the operations of
+// sub, dot, len and cross in their order (no fused multiply-add:
+// -ffp-contract=off), so each lane rounds exactly as the scalar code does.
+struct Lanes3 {
+    __m128d x, y, z;
+};
+inline Lanes3 sub2(const Lanes3& p, const Lanes3& q) {
+    return {_mm_sub_pd(p.x, q.x), _mm_sub_pd(p.y, q.y), _mm_sub_pd(p.z, q.z)};
+}
+inline __m128d dot2(const Lanes3& p, const Lanes3& q) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(p.x, q.x), _mm_mul_pd(p.y, q.y)), _mm_mul_pd(p.z, q.z));
+}
+inline __m128d len2(const Lanes3& p) { return _mm_sqrt_pd(dot2(p, p)); }
+inline Lanes3 cross2(const Lanes3& p, const Lanes3& q) {
+    return {_mm_sub_pd(_mm_mul_pd(p.y, q.z), _mm_mul_pd(p.z, q.y)),
+            _mm_sub_pd(_mm_mul_pd(p.z, q.x), _mm_mul_pd(p.x, q.z)),
+            _mm_sub_pd(_mm_mul_pd(p.x, q.y), _mm_mul_pd(p.y, q.x))};
+}
+inline Lanes3 corner2(const double* first, const double* second) {
+    return {_mm_set_pd(second[0], first[0]), _mm_set_pd(second[1], first[1]), _mm_set_pd(second[2], first[2])};
+}
+#endif
+
+
 // Edges from a, scaled so that the longest of the six edges is 1 (q and the
 // angles do not change; every product stays near 1). False if degenerate.
 bool unit_edges(const double* a, const double* b, const double* c, const double* d, V& u, V& v, V& w) {
@@ -83,29 +108,8 @@ double radius_ratio(const double* a, const double* b, const double* c, const dou
 #if defined(__SSE2__)
 namespace {
 
-// radius_ratio_of for two tetrahedra, one per lane: every operation of the
-// scalar code, in its order (no fused multiply-add: -ffp-contract=off), so
-// each lane rounds exactly as radius_ratio does.
-struct Lanes3 {
-    __m128d x, y, z;
-};
-inline Lanes3 sub2(const Lanes3& p, const Lanes3& q) {
-    return {_mm_sub_pd(p.x, q.x), _mm_sub_pd(p.y, q.y), _mm_sub_pd(p.z, q.z)};
-}
-inline __m128d dot2(const Lanes3& p, const Lanes3& q) {
-    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(p.x, q.x), _mm_mul_pd(p.y, q.y)), _mm_mul_pd(p.z, q.z));
-}
-inline __m128d len2(const Lanes3& p) { return _mm_sqrt_pd(dot2(p, p)); }
-inline Lanes3 cross2(const Lanes3& p, const Lanes3& q) {
-    return {_mm_sub_pd(_mm_mul_pd(p.y, q.z), _mm_mul_pd(p.z, q.y)),
-            _mm_sub_pd(_mm_mul_pd(p.z, q.x), _mm_mul_pd(p.x, q.z)),
-            _mm_sub_pd(_mm_mul_pd(p.x, q.y), _mm_mul_pd(p.y, q.x))};
-}
-inline Lanes3 corner2(const double* first, const double* second) {
-    return {_mm_set_pd(second[0], first[0]), _mm_set_pd(second[1], first[1]), _mm_set_pd(second[2], first[2])};
-}
-
-// out[k] = radius_ratio of tetrahedron k (k = 0, 1), given by its corners.
+// out[k] = radius_ratio of tetrahedron k (k = 0, 1), given by its corners:
+// radius_ratio_of in the lanes of Lanes3.
 void radius_ratio_pair(const double* const first[4], const double* const second[4], double out[2]) {
     const Lanes3 a = corner2(first[0], second[0]);
     const Lanes3 u = sub2(corner2(first[1], second[1]), a);
@@ -171,6 +175,23 @@ namespace {
 void dihedral_pairs(const V& u, const V& v, const V& w, std::array<double, 6>& sine,
                     std::array<double, 6>& cosine) {
     const V p[4] = {V{0, 0, 0}, u, v, w};
+#if defined(__SSE2__)
+    // Two edges at a time (Lanes3), each lane bit for bit the loop below.
+    for (std::size_t i = 0; i < 6; i += 2) {
+        const auto& e = kTetEdges[i];
+        const auto& f = kTetEdges[i + 1];
+        const auto at = [&](int k) {
+            const V& x = p[e[static_cast<std::size_t>(k)]];
+            const V& y = p[f[static_cast<std::size_t>(k)]];
+            return Lanes3{_mm_set_pd(y[0], x[0]), _mm_set_pd(y[1], x[1]), _mm_set_pd(y[2], x[2])};
+        };
+        const Lanes3 corner = at(0);
+        const Lanes3 axis = sub2(at(1), corner);
+        const Lanes3 n1 = cross2(axis, sub2(at(2), corner)), n2 = cross2(axis, sub2(at(3), corner));
+        _mm_storeu_pd(&sine[i], len2(cross2(n1, n2)));
+        _mm_storeu_pd(&cosine[i], dot2(n1, n2));
+    }
+#else
     for (std::size_t i = 0; i < 6; ++i) {
         const auto& e = kTetEdges[i];
         const auto at = [&](int k) { return p[e[static_cast<std::size_t>(k)]]; };
@@ -179,6 +200,7 @@ void dihedral_pairs(const V& u, const V& v, const V& w, std::array<double, 6>& s
         sine[i] = len(cross(n1, n2));
         cosine[i] = dot(n1, n2);
     }
+#endif
 }
 
 // Angle i of the pairs is below angle j: both in [0, 180] deg, so the sine
