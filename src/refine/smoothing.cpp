@@ -39,7 +39,7 @@ constexpr int kAngleHalvings = 8;
 
 class Smoother {
 public:
-    explicit Smoother(RefineContext& c) : c_(c), m_(c.m) {}
+    explicit Smoother(RefineContext& c) : c_(c), m_(c.m) { suspects_.fill(std::numeric_limits<std::size_t>::max()); }
     bool smooth(VertexId v, const mesh::VertexBalls& balls);
     bool raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio,
                               std::uint32_t since);
@@ -66,7 +66,11 @@ private:
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
     std::vector<double> qualities_;  // radius ratios of ball_ at the vertex's position, in ball_'s order
-    std::size_t smallest_at_ = 0;    // rate_angles: where ball_'s smallest angle was last
+    // rate_angles: the ball tetrahedra (indices in ball_) that held the
+    // smallest angle at the last positions rated, the latest first; past
+    // the ball's size where unknown (a new ball).
+    std::array<std::size_t, 4> suspects_;
+    void suspect(std::size_t k);
     mesh::SlotMarks seen_;  // per vertex: kSeen when already in neighbours_
     static constexpr std::uint8_t kSeen = 1;
 };
@@ -274,29 +278,48 @@ bool Smoother::smooth(VertexId v, const mesh::VertexBalls& balls) {
     return best != nullptr;
 }
 
-// The ball's radius ratios first, then its smallest dihedral angle, where
-// only a tetrahedron whose radius ratio is under the bound of the smallest
+// The ball's smallest dihedral angle, and its radius ratios. The
+// suspects first (suspects_: the tetrahedra of the smallest angle at the
+// last positions rated): after a small move one of them mostly still
+// has it, and most positions a search tries are refused by one of them
+// alone, before any radius ratio (on thingiverse-feeder-body, checking
+// only the last one left half of the full ratings refused by another
+// tetrahedron's angle). Then the radius ratios, and the angles of the
+// other tetrahedra whose radius ratio is under the bound of the smallest
 // angle so far (radius_ratio_bound_for_dihedral: a tetrahedron above it
-// has no smaller angle) is measured: a few per ball instead of all (the
-// angles' arctangents were half of thingiverse-chain-link's mesh
-// generation). Stops at an angle at or below `to_beat`: the caller
-// refuses the position then.
+// has no smaller angle): a few per ball instead of all (the angles'
+// arctangents were half of thingiverse-chain-link's mesh generation).
+// Stops at an angle at or below `to_beat`: the caller refuses the
+// position then, whichever tetrahedron refused it.
 Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_beat) {
     BallAngles r;
     const auto angle_of = [&](std::size_t k) {
         const VertexId* w = m_.vertices(ball_[k]);
         return min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
     };
-    // The tetrahedron of the smallest angle at the previous position
-    // first: after a small move it mostly still is. Most positions a
-    // search tries are refused, mostly by that angle alone, before any
-    // radius ratio; else its bound skips most of the others.
-    const std::size_t first = smallest_at_ < ball_.size() ? smallest_at_ : 0;
-    const double first_angle = angle_of(first);
-    if (first_angle <= to_beat) {
-        r.smallest = first_angle;
-        return r;
+    double smallest = std::numeric_limits<double>::infinity();
+    std::size_t smallest_at = 0;
+    std::size_t checked = 0;  // suspects_[0 .. checked) measured, in the ball
+    for (; checked < suspects_.size() && suspects_[checked] < ball_.size(); ++checked) {
+        const double angle = angle_of(suspects_[checked]);
+        if (angle < smallest) smallest = angle, smallest_at = suspects_[checked];
+        if (angle <= to_beat) {
+            suspect(suspects_[checked]);
+            r.smallest = angle;
+            return r;
+        }
     }
+    if (checked == 0) {
+        smallest = angle_of(0);
+        if (smallest <= to_beat) {
+            suspect(0);
+            r.smallest = smallest;
+            return r;
+        }
+    }
+    const auto was_checked = [&](std::size_t k) {
+        return checked == 0 ? k == 0 : std::find(suspects_.begin(), suspects_.begin() + checked, k) != suspects_.begin() + checked;
+    };
     // Every tetrahedron positively oriented (exact), then the radius
     // ratios two at a time (radius_ratios); an inverted one leaves r as
     // the ratios before it made it.
@@ -314,20 +337,28 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
         r.under += q < keep_radius_ratio;
     }
     if (valid < ball_.size()) return r;
-    double smallest = first_angle;
-    smallest_at_ = first;
     double q_bound = radius_ratio_bound_for_dihedral(smallest);
     for (std::size_t k = 0; k < ball_.size() && smallest > to_beat; ++k) {
         // The margin keeps a tetrahedron whose bound ties within rounding.
-        if (k == first || qualities_[k] * (1 - 1e-9) >= q_bound) continue;
+        if (qualities_[k] * (1 - 1e-9) >= q_bound || was_checked(k)) continue;
         const double angle = angle_of(k);
         if (angle >= smallest) continue;
         smallest = angle;
-        smallest_at_ = k;
+        smallest_at = k;
         q_bound = radius_ratio_bound_for_dihedral(smallest);
     }
+    suspect(smallest_at);
     r.smallest = smallest;
     return r;
+}
+
+// k goes to the front of suspects_ (from its place there, or pushing the
+// last one out).
+void Smoother::suspect(std::size_t k) {
+    auto at = std::find(suspects_.begin(), suspects_.end(), k);
+    if (at == suspects_.end()) at = suspects_.end() - 1;
+    std::rotate(suspects_.begin(), at, at + 1);
+    suspects_[0] = k;
 }
 
 // Table II's minimum dihedral angle does not follow the radius ratio that
@@ -355,6 +386,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     const bool wanted = std::any_of(ball_.begin(), ball_.end(),
                                     [&](TetId t) { return has_dihedral_below(m_, t, below_degrees, q_bound); });
     if (!wanted || !collect_link(v)) return false;
+    suspects_.fill(std::numeric_limits<std::size_t>::max());
     const Point here = {m_.point(v)[0], m_.point(v)[1], m_.point(v)[2]};
     const BallAngles old = rate_angles(keep_radius_ratio);
     const double sum_floor = kAngleMeanKept * old.sum_q;
