@@ -39,7 +39,7 @@ constexpr int kAngleHalvings = 8;
 
 class Smoother {
 public:
-    explicit Smoother(RefineContext& c) : c_(c), m_(c.m) { suspects_.fill(std::numeric_limits<std::size_t>::max()); }
+    explicit Smoother(RefineContext& c) : c_(c), m_(c.m) {}
     bool smooth(VertexId v, const mesh::VertexBalls& balls);
     bool raise_smallest_angle(VertexId v, TetId start, double below_degrees, double keep_radius_ratio,
                               std::uint32_t since);
@@ -68,8 +68,9 @@ private:
     std::vector<double> qualities_;  // radius ratios of ball_ at the vertex's position, in ball_'s order
     // rate_angles: the ball tetrahedra (indices in ball_) that held the
     // smallest angle at the last positions rated, the latest first; past
-    // the ball's size where unknown (a new ball).
-    std::array<std::size_t, 4> suspects_;
+    // the ball's size where unknown (kNoSuspect: a new ball).
+    static constexpr std::size_t kNoSuspect = std::numeric_limits<std::size_t>::max();
+    std::array<std::size_t, 4> suspects_ = {kNoSuspect, kNoSuspect, kNoSuspect, kNoSuspect};
     void suspect(std::size_t k);
     mesh::SlotMarks seen_;  // per vertex: kSeen when already in neighbours_
     static constexpr std::uint8_t kSeen = 1;
@@ -297,9 +298,10 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
         const VertexId* w = m_.vertices(ball_[k]);
         return min_dihedral(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]));
     };
+    if (suspects_[0] >= ball_.size()) suspects_[0] = 0;  // a new ball: its first tetrahedron
     double smallest = std::numeric_limits<double>::infinity();
     std::size_t smallest_at = 0;
-    std::size_t checked = 0;  // suspects_[0 .. checked) measured, in the ball
+    std::size_t checked = 0;  // suspects_[0 .. checked) measured (those in the ball)
     for (; checked < suspects_.size() && suspects_[checked] < ball_.size(); ++checked) {
         const double angle = angle_of(suspects_[checked]);
         if (angle < smallest) smallest = angle, smallest_at = suspects_[checked];
@@ -309,16 +311,9 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
             return r;
         }
     }
-    if (checked == 0) {
-        smallest = angle_of(0);
-        if (smallest <= to_beat) {
-            suspect(0);
-            r.smallest = smallest;
-            return r;
-        }
-    }
     const auto was_checked = [&](std::size_t k) {
-        return checked == 0 ? k == 0 : std::find(suspects_.begin(), suspects_.begin() + checked, k) != suspects_.begin() + checked;
+        return std::find(suspects_.begin(), suspects_.begin() + static_cast<std::ptrdiff_t>(checked), k) !=
+               suspects_.begin() + static_cast<std::ptrdiff_t>(checked);
     };
     // Every tetrahedron positively oriented (exact), then the radius
     // ratios two at a time (radius_ratios); an inverted one leaves r as
@@ -386,7 +381,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     const bool wanted = std::any_of(ball_.begin(), ball_.end(),
                                     [&](TetId t) { return has_dihedral_below(m_, t, below_degrees, q_bound); });
     if (!wanted || !collect_link(v)) return false;
-    suspects_.fill(std::numeric_limits<std::size_t>::max());
+    suspects_.fill(kNoSuspect);
     const Point here = {m_.point(v)[0], m_.point(v)[1], m_.point(v)[2]};
     const BallAngles old = rate_angles(keep_radius_ratio);
     const double sum_floor = kAngleMeanKept * old.sum_q;
