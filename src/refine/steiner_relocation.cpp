@@ -101,16 +101,29 @@ bool Relocator::collect_boundary(VertexId v) {
 // see p strictly (exact); else its worst radius ratio and its tetrahedra
 // below `threshold`.
 bool Relocator::star_measures(const double* p, double threshold, double& worst, std::size_t& bad) const {
+    for (const Face& f : boundary_)
+        if (geom::orient3d(m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p) <= 0) return false;
+    // Then the radius ratios, two at a time (radius_ratio_pair).
     worst = 1;
     bad = 0;
-    for (const Face& f : boundary_) {
-        const double* a = m_.point(f.v[0]);
-        const double* b = m_.point(f.v[1]);
-        const double* d = m_.point(f.v[2]);
-        if (geom::orient3d(a, b, d, p) <= 0) return false;
-        const double q = radius_ratio(a, b, d, p);
+    const auto fold = [&](double q) {
         worst = std::min(worst, q);
         bad += q < threshold;
+    };
+    std::size_t i = 0;
+    for (; i + 1 < boundary_.size(); i += 2) {
+        const Face& f = boundary_[i];
+        const Face& g = boundary_[i + 1];
+        const double* first[4] = {m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p};
+        const double* second[4] = {m_.point(g.v[0]), m_.point(g.v[1]), m_.point(g.v[2]), p};
+        double pair[2];
+        radius_ratio_pair(first, second, pair);
+        fold(pair[0]);
+        fold(pair[1]);
+    }
+    if (i < boundary_.size()) {
+        const Face& f = boundary_[i];
+        fold(radius_ratio(m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p));
     }
     return true;
 }

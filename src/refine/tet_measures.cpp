@@ -105,12 +105,10 @@ double radius_ratio(const double* a, const double* b, const double* c, const dou
     return std::clamp(q, 0.0, 1.0);
 }
 
-#if defined(__SSE2__)
-namespace {
-
-// out[k] = radius_ratio of tetrahedron k (k = 0, 1), given by its corners:
-// radius_ratio_of in the lanes of Lanes3.
+// radius_ratio_of in the lanes of Lanes3 (or, without SSE2, radius_ratio
+// twice).
 void radius_ratio_pair(const double* const first[4], const double* const second[4], double out[2]) {
+#if defined(__SSE2__)
     const Lanes3 a = corner2(first[0], second[0]);
     const Lanes3 u = sub2(corner2(first[1], second[1]), a);
     const Lanes3 v = sub2(corner2(first[2], second[2]), a);
@@ -139,10 +137,11 @@ void radius_ratio_pair(const double* const first[4], const double* const second[
             out[k] = std::isfinite(lanes[k]) ? std::clamp(lanes[k], 0.0, 1.0) : 0;
         }
     }
-}
-
-}  // namespace
+#else
+    out[0] = radius_ratio(first[0], first[1], first[2], first[3]);
+    out[1] = radius_ratio(second[0], second[1], second[2], second[3]);
 #endif
+}
 
 void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out) {
     const auto corners = [&](mesh::TetId t, const double* c[4]) {
@@ -150,7 +149,6 @@ void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t 
         for (int i = 0; i < 4; ++i) c[i] = m.point(v[i]);
     };
     std::size_t k = 0;
-#if defined(__SSE2__)
     for (; k + 1 < count; k += 2) {
         const double* first[4];
         const double* second[4];
@@ -158,8 +156,7 @@ void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t 
         corners(tets[k + 1], second);
         radius_ratio_pair(first, second, out + k);
     }
-#endif
-    for (; k < count; ++k) out[k] = radius_ratio(m, tets[k]);
+    if (k < count) out[k] = radius_ratio(m, tets[k]);
 }
 
 double oriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {

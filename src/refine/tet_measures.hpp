@@ -48,6 +48,9 @@ inline double radius_ratio(const mesh::TetMesh& m, const Corners& w) {
 // times per vertex (a quarter of `cbr mesh`'s instructions on
 // common3d-homer were radius ratios).
 void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out);
+// The same for two tetrahedra given by their corners: out[0] for first,
+// out[1] for second.
+void radius_ratio_pair(const double* const first[4], const double* const second[4], double out[2]);
 
 // The radius ratio of abcd when it is positively oriented (exact), else
 // -infinity: the measure quality flips maximize over ring triangulations
