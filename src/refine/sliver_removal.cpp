@@ -209,26 +209,23 @@ double SliverRemover::star_quality(const double* p, double floor) const {
     // the angle too capped every star at 1 degree, and the climb of
     // rescue_angle stopped at the first candidate to reach it.)
     double worst = by_radius_ratio() ? 1 : 180;
-    std::size_t i = 0;
-    if (by_radius_ratio()) {  // two at a time (radius_ratio_pair), the same values
-        for (; i + 1 < boundary_.size(); i += 2) {
-            const BoundaryFace& f = boundary_[i];
-            const BoundaryFace& g = boundary_[i + 1];
-            const double* first[4] = {f.corners[0], f.corners[1], f.corners[2], p};
-            const double* second[4] = {g.corners[0], g.corners[1], g.corners[2], p};
-            double pair[2];
-            radius_ratio_pair(first, second, pair);
-            for (const double q : pair) {
-                worst = std::min(worst, q);
-                if (worst <= floor) return worst;
-            }
-        }
+    const auto worse = [&](double q) {
+        worst = std::min(worst, q);
+        return worst > floor;
+    };
+    if (by_radius_ratio()) {  // two at a time (each_radius_ratio), the same values
+        each_radius_ratio(
+            boundary_.size(),
+            [&](std::size_t k, const double* c[4]) {
+                const BoundaryFace& f = boundary_[k];
+                for (int i = 0; i < 3; ++i) c[i] = f.corners[static_cast<std::size_t>(i)];
+                c[3] = p;
+            },
+            worse);
+        return worst;
     }
-    for (; i < boundary_.size(); ++i) {
-        const BoundaryFace& f = boundary_[i];
-        worst = std::min(worst, measure_(f.corners[0], f.corners[1], f.corners[2], p));
-        if (worst <= floor) return worst;
-    }
+    for (const BoundaryFace& f : boundary_)
+        if (!worse(measure_(f.corners[0], f.corners[1], f.corners[2], p))) break;
     return worst;
 }
 

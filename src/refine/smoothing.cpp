@@ -77,19 +77,11 @@ private:
 };
 
 // Calls visit(q) with the radius ratios of ball_'s tetrahedra in ball_'s
-// order until it returns false (then false). They are rated two at a time
-// (radius_ratios: one SSE2 instruction for both, bit for bit the same
-// values), so a stop leaves at most one rated in vain.
+// order until it returns false (then false): each_radius_ratio.
 template <typename Visit>
 bool Smoother::each_quality(Visit visit) const {
-    double pair[2];
-    for (std::size_t i = 0; i < ball_.size(); i += 2) {
-        const std::size_t n = std::min<std::size_t>(2, ball_.size() - i);
-        radius_ratios(m_, ball_.data() + i, n, pair);
-        for (std::size_t j = 0; j < n; ++j)
-            if (!visit(pair[j])) return false;
-    }
-    return true;
+    return each_radius_ratio(
+        ball_.size(), [&](std::size_t k, const double* c[4]) { corner_points(m_, ball_[k], c); }, visit);
 }
 
 // The ball's minimum quality when it is above `floor`; otherwise some value

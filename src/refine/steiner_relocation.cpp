@@ -103,28 +103,21 @@ bool Relocator::collect_boundary(VertexId v) {
 bool Relocator::star_measures(const double* p, double threshold, double& worst, std::size_t& bad) const {
     for (const Face& f : boundary_)
         if (geom::orient3d(m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p) <= 0) return false;
-    // Then the radius ratios, two at a time (radius_ratio_pair).
+    // Then the radius ratios (each_radius_ratio: two at a time).
     worst = 1;
     bad = 0;
-    const auto fold = [&](double q) {
-        worst = std::min(worst, q);
-        bad += q < threshold;
-    };
-    std::size_t i = 0;
-    for (; i + 1 < boundary_.size(); i += 2) {
-        const Face& f = boundary_[i];
-        const Face& g = boundary_[i + 1];
-        const double* first[4] = {m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p};
-        const double* second[4] = {m_.point(g.v[0]), m_.point(g.v[1]), m_.point(g.v[2]), p};
-        double pair[2];
-        radius_ratio_pair(first, second, pair);
-        fold(pair[0]);
-        fold(pair[1]);
-    }
-    if (i < boundary_.size()) {
-        const Face& f = boundary_[i];
-        fold(radius_ratio(m_.point(f.v[0]), m_.point(f.v[1]), m_.point(f.v[2]), p));
-    }
+    each_radius_ratio(
+        boundary_.size(),
+        [&](std::size_t k, const double* c[4]) {
+            const Face& f = boundary_[k];
+            for (int i = 0; i < 3; ++i) c[i] = m_.point(f.v[i]);
+            c[3] = p;
+        },
+        [&](double q) {
+            worst = std::min(worst, q);
+            bad += q < threshold;
+            return true;
+        });
     return true;
 }
 

@@ -144,19 +144,12 @@ void radius_ratio_pair(const double* const first[4], const double* const second[
 }
 
 void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out) {
-    const auto corners = [&](mesh::TetId t, const double* c[4]) {
-        const mesh::VertexId* v = m.vertices(t);
-        for (int i = 0; i < 4; ++i) c[i] = m.point(v[i]);
-    };
-    std::size_t k = 0;
-    for (; k + 1 < count; k += 2) {
-        const double* first[4];
-        const double* second[4];
-        corners(tets[k], first);
-        corners(tets[k + 1], second);
-        radius_ratio_pair(first, second, out + k);
-    }
-    if (k < count) out[k] = radius_ratio(m, tets[k]);
+    each_radius_ratio(
+        count, [&](std::size_t k, const double* c[4]) { corner_points(m, tets[k], c); },
+        [&](double q) {
+            *out++ = q;
+            return true;
+        });
 }
 
 double oriented_radius_ratio(const double* a, const double* b, const double* c, const double* d) {

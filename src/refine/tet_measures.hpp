@@ -40,17 +40,46 @@ inline Corners corners_of(const mesh::TetMesh& m, mesh::TetId t) {
 inline double radius_ratio(const mesh::TetMesh& m, const Corners& w) {
     return radius_ratio(m.point(w[0]), m.point(w[1]), m.point(w[2]), m.point(w[3]));
 }
+// The coordinates of t's corners, in its vertex order.
+inline void corner_points(const mesh::TetMesh& m, mesh::TetId t, const double* c[4]) {
+    const mesh::VertexId* v = m.vertices(t);
+    for (int i = 0; i < 4; ++i) c[i] = m.point(v[i]);
+}
 
-// The radius ratios of tetrahedra tets[0..count) of m into out[0..count),
-// each bit for bit what radius_ratio gives: two at a time in the lanes of
-// one SSE2 register (the same operations in the same order per lane),
-// where the processor has them. Smoothing rates each ball this way, many
-// times per vertex (a quarter of `cbr mesh`'s instructions on
-// common3d-homer were radius ratios).
-void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out);
-// The same for two tetrahedra given by their corners: out[0] for first,
-// out[1] for second.
+// Two radius ratios at once: out[0] of the tetrahedron with corners
+// first, out[1] of second, each bit for bit what radius_ratio gives (the
+// same operations in the same order, one tetrahedron per lane of SSE2
+// registers, where the processor has them).
 void radius_ratio_pair(const double* const first[4], const double* const second[4], double out[2]);
+
+// Calls visit(q) with the radius ratios of `count` tetrahedra in order,
+// the k-th given by corners(k, c) (filling const double* c[4]), until
+// visit returns false (then false). Rated two at a time
+// (radius_ratio_pair), so a stop leaves at most one rated in vain.
+// Smoothing rates whole balls this way many times per vertex (a quarter
+// of `cbr mesh`'s instructions on common3d-homer were radius ratios), and
+// relocation and sliver removal the stars of their candidate points.
+template <typename Corners, typename Visit>
+bool each_radius_ratio(std::size_t count, Corners corners, Visit visit) {
+    std::size_t k = 0;
+    for (; k + 1 < count; k += 2) {
+        const double* first[4];
+        const double* second[4];
+        corners(k, first);
+        corners(k + 1, second);
+        double pair[2];
+        radius_ratio_pair(first, second, pair);
+        if (!visit(pair[0]) || !visit(pair[1])) return false;
+    }
+    if (k == count) return true;
+    const double* last[4];
+    corners(k, last);
+    return visit(radius_ratio(last[0], last[1], last[2], last[3]));
+}
+
+// The radius ratios of tetrahedra tets[0..count) of m into out[0..count)
+// (each_radius_ratio).
+void radius_ratios(const mesh::TetMesh& m, const mesh::TetId* tets, std::size_t count, double* out);
 
 // The radius ratio of abcd when it is positively oriented (exact), else
 // -infinity: the measure quality flips maximize over ring triangulations
