@@ -48,7 +48,6 @@ inline Lanes3 corner2(const double* first, const double* second) {
 }
 #endif
 
-
 // Edges from a, scaled so that the longest of the six edges is 1 (q and the
 // angles do not change; every product stays near 1). False if degenerate.
 bool unit_edges(const double* a, const double* b, const double* c, const double* d, V& u, V& v, V& w) {
@@ -171,9 +170,7 @@ void dihedral_pairs(const V& u, const V& v, const V& w, std::array<double, 6>& s
         const auto& e = kTetEdges[i];
         const auto& f = kTetEdges[i + 1];
         const auto at = [&](int k) {
-            const V& x = p[e[static_cast<std::size_t>(k)]];
-            const V& y = p[f[static_cast<std::size_t>(k)]];
-            return Lanes3{_mm_set_pd(y[0], x[0]), _mm_set_pd(y[1], x[1]), _mm_set_pd(y[2], x[2])};
+            return corner2(p[e[static_cast<std::size_t>(k)]].data(), p[f[static_cast<std::size_t>(k)]].data());
         };
         const Lanes3 corner = at(0);
         const Lanes3 axis = sub2(at(1), corner);
