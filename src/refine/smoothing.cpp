@@ -59,6 +59,8 @@ private:
     double min_quality(double floor) const;
     double sum_quality(double floor, double to_beat) const;
     bool odt_point(Point& out) const;
+    std::size_t oriented_prefix() const;
+    bool link_within_size(VertexId v) const;
     bool ball_valid(VertexId v) const;
 
     RefineContext& c_;
@@ -153,15 +155,25 @@ bool Smoother::collect_link(VertexId v) {
     return true;
 }
 
-bool Smoother::ball_valid(VertexId v) const {
-    for (TetId t : ball_) {
-        const VertexId* w = m_.vertices(t);
-        if (geom::orient3d(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) <= 0) return false;
+// How many of ball_'s tetrahedra, from the first, are positively oriented
+// (exact): all of them when the ball is valid.
+std::size_t Smoother::oriented_prefix() const {
+    std::size_t n = 0;
+    for (; n < ball_.size(); ++n) {
+        const VertexId* w = m_.vertices(ball_[n]);
+        if (geom::orient3d(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) <= 0) break;
     }
+    return n;
+}
+
+// Every edge from v to its link within the size bound.
+bool Smoother::link_within_size(VertexId v) const {
     for (VertexId u : neighbours_)
         if (!c_.edge_within_size(u, v)) return false;
     return true;
 }
+
+bool Smoother::ball_valid(VertexId v) const { return oriented_prefix() == ball_.size() && link_within_size(v); }
 
 // Candidate positions: the centroid of the ball's other vertices (Laplacian
 // smoothing, §6 "local constrained Laplacian smoothing"), half and a quarter
@@ -310,12 +322,7 @@ Smoother::BallAngles Smoother::rate_angles(double keep_radius_ratio, double to_b
     // Every tetrahedron positively oriented (exact), then the radius
     // ratios two at a time (radius_ratios); an inverted one leaves r as
     // the ratios before it made it.
-    std::size_t valid = 0;
-    while (valid < ball_.size()) {
-        const VertexId* w = m_.vertices(ball_[valid]);
-        if (geom::orient3d(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3])) <= 0) break;
-        ++valid;
-    }
+    const std::size_t valid = oriented_prefix();
     qualities_.resize(valid);
     radius_ratios(m_, ball_.data(), valid, qualities_.data());
     for (const double q : qualities_) {
@@ -378,7 +385,8 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     const BallAngles old = rate_angles(keep_radius_ratio);
     const double sum_floor = kAngleMeanKept * old.sum_q;
     const auto acceptable = [&](const BallAngles& r, double to_beat) {
-        return r.smallest > to_beat && r.under <= old.under && r.sum_q >= sum_floor && ball_valid(v);
+        // A rating above to_beat was a full one: the ball is oriented.
+        return r.smallest > to_beat && r.under <= old.under && r.sum_q >= sum_floor && link_within_size(v);
     };
     double step = 0;
     for (VertexId u : neighbours_) step += std::sqrt(squared_distance(m_.point(u), here.data()));

@@ -207,7 +207,7 @@ def main():
             else:
                 c[{0: "ok", 2: "rejected", 3: "failed"}[rc]] += 1
                 if rc == 3:  # allowed, but worth a look: TetGen may recover it
-                    failures.append((os.path.basename(surface), command, err.strip().splitlines()[0][:300]))
+                    failures.append((os.path.basename(surface), command, (err.strip().splitlines() or [""])[0][:300]))
             if args.keep and (problem or rc == 3):
                 os.makedirs(args.keep, exist_ok=True)
                 shutil.copy(surface, args.keep)
