@@ -4,13 +4,14 @@
 #include <iterator>
 #include <numeric>
 #include <utility>
-#include <unordered_set>
 
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/failed_rings.hpp"
 #include "mesh/flips.hpp"
+#include "mesh/key_table.hpp"
+#include "mesh/slot_marks.hpp"
 #include "recover/failed_searches.hpp"
 #include "recover/segment_walk.hpp"
 
@@ -262,14 +263,13 @@ private:
         const double* pw = m_.point(w);
         // Members, cleared: this runs for every step of every wide edge.
         std::vector<TetId>& near = near_;
-        std::unordered_set<TetId>& seen = seen_;
         std::vector<Crossing>& crossings = crossings_;
-        std::unordered_set<std::uint64_t>& tried_edges = tried_edges_;
-        seen.clear();
         crossings.clear();
-        tried_edges.clear();
+        tried_edges_.clear();
         if (!mesh::ball(m_, u, incident_[u], near)) return false;
-        seen.insert(near.begin(), near.end());
+        mesh::SlotMarks& seen = seen_;
+        seen.new_round(m_.slot_count());
+        for (TetId t : near) seen.set(t, kSeen);
         for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
             const TetId t = near[i];
             if (m_.is_ghost(t)) continue;
@@ -288,13 +288,18 @@ private:
                     crossings.push_back(face);
                 }
                 const TetId n = mesh::facet_tet(m_.neighbor(t, f));
-                if (seen.insert(n).second) near.push_back(n);
+                if (!seen.has(n, kSeen)) {
+                    seen.set(n, kSeen);
+                    near.push_back(n);
+                }
             }
             for (int i0 = 0; i0 < 4; ++i0)
                 for (int i1 = i0 + 1; i1 < 4; ++i1) {
                     const VertexId x = v[i0], y = v[i1];
                     if (x == u || x == w || y == u || y == w) continue;
-                    if (!tried_edges.insert(edge_key(x, y)).second) continue;
+                    bool& tried = tried_edges_[edge_key(x, y)];
+                    if (tried) continue;
+                    tried = true;
                     if (crosses_in_interior(pu, pw, m_.point(x), m_.point(y))) {
                         Crossing edge{};
                         edge.kind = Crossing::kEdge;
@@ -477,9 +482,10 @@ private:
     std::vector<mesh::Shell> shells_;
     std::vector<std::vector<std::size_t>> orders_;  // per nesting level, as shells_: the ring positions to try
     std::vector<TetId> near_;
-    std::unordered_set<TetId> seen_;
+    static constexpr std::uint8_t kSeen = 1u << 0;
+    mesh::SlotMarks seen_;  // kSeen: the tetrahedra in near_
     std::vector<Crossing> crossings_;
-    std::unordered_set<std::uint64_t> tried_edges_;
+    mesh::KeyTable<bool> tried_edges_;
     // worth_retrying: per vertex, the last attempt that left new tetrahedra
     // at it; per face, its last attempt (0: none).
     std::vector<VertexId> touched_;
