@@ -258,18 +258,6 @@ private:
     // the search. The tetrahedra the closed segment meets are searched from
     // u's ball outwards, and every crossing — a face or an edge crossed in
     // its interior — is tried in that order.
-    // Whether segment uw meets triangle abc only at u or w, its vertex
-    // there, because the segment's other end is off the triangle's plane:
-    // classify_segment_triangle's EndpointVertex for one orientation
-    // instead of five. Most faces remove_any_crossing looks at are the
-    // faces at u of u's ball.
-    bool touches_only_at_end(VertexId u, VertexId w, VertexId a, VertexId b, VertexId c) const {
-        const bool at_u = a == u || b == u || c == u;
-        const bool at_w = a == w || b == w || c == w;
-        if (at_u == at_w) return false;  // neither, or the segment is an edge of the triangle
-        return geom::orient3d(m_.point(a), m_.point(b), m_.point(c), m_.point(at_u ? w : u)) != 0;
-    }
-
     bool remove_any_crossing(VertexId u, VertexId w) {
         const double* pu = m_.point(u);
         const double* pw = m_.point(w);
@@ -289,9 +277,7 @@ private:
             for (int f = 0; f < 4; ++f) {
                 const int* k = kFaceVertices[f];
                 const VertexId a = v[k[0]], b = v[k[1]], c = v[k[2]];
-                if (touches_only_at_end(u, w, a, b, c)) continue;
-                const geom::SegTriKind kind =
-                    geom::classify_segment_triangle(pu, pw, m_.point(a), m_.point(b), m_.point(c)).kind;
+                const geom::SegTriKind kind = classify_segment_face(m_, u, w, a, b, c);
                 if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
                 if (kind == geom::SegTriKind::CrossInterior) {
                     Crossing face{};

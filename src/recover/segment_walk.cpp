@@ -48,4 +48,15 @@ Crossing first_crossing(const mesh::TetMesh& m, VertexId u, TetId start, VertexI
     return c;
 }
 
+geom::SegTriKind classify_segment_face(const mesh::TetMesh& m, mesh::VertexId u, mesh::VertexId w, mesh::VertexId a,
+                                       mesh::VertexId b, mesh::VertexId c) {
+    const bool at_u = a == u || b == u || c == u;
+    const bool at_w = a == w || b == w || c == w;
+    // At one end only (at both, uw is an edge of the triangle): the line
+    // meets the plane at that vertex unless the other end is in the plane.
+    if (at_u != at_w && geom::orient3d(m.point(a), m.point(b), m.point(c), m.point(at_u ? w : u)) != 0)
+        return geom::SegTriKind::EndpointVertex;
+    return geom::classify_segment_triangle(m.point(u), m.point(w), m.point(a), m.point(b), m.point(c)).kind;
+}
+
 }  // namespace cbr::recover

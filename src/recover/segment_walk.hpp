@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "geom/intersect.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::recover {
@@ -24,5 +25,14 @@ struct Crossing {
 // tetrahedron (w outside the hull seen from u).
 Crossing first_crossing(const mesh::TetMesh& m, mesh::VertexId u, mesh::TetId start, mesh::VertexId w,
                         std::vector<mesh::TetId>& scratch);
+
+// geom::classify_segment_triangle's kind for segment uw and triangle abc,
+// all mesh vertices. A triangle with u or w as a vertex (most faces met
+// when walking from u's ball) meets the segment only there, an
+// EndpointVertex, whenever the other end is off its plane: one
+// orientation then decides what the general test takes five for (two
+// of them at exactly zero).
+geom::SegTriKind classify_segment_face(const mesh::TetMesh& m, mesh::VertexId u, mesh::VertexId w, mesh::VertexId a,
+                                       mesh::VertexId b, mesh::VertexId c);
 
 }  // namespace cbr::recover

@@ -12,6 +12,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
+#include "recover/segment_walk.hpp"
 
 namespace cbr::recover {
 namespace {
@@ -117,8 +118,6 @@ private:
     // (from a's ball outwards, never across a constraint face), nearest
     // `target` first (nullptr: in the order found, d2 0; for a count).
     std::vector<Met> met_tets(VertexId a, VertexId b, const double* target) {
-        const double* pa = m_.point(a);
-        const double* pb = m_.point(b);
         std::vector<Met> out;
         std::vector<TetId> near;
         if (!mesh::ball(m_, a, incident_[a], near)) return out;
@@ -131,9 +130,7 @@ private:
             bool met = false;
             for (int f = 0; f < 4; ++f) {
                 const int* k = kFaceVertices[f];
-                const geom::SegTriKind kind =
-                    geom::classify_segment_triangle(pa, pb, m_.point(v[k[0]]), m_.point(v[k[1]]), m_.point(v[k[2]]))
-                        .kind;
+                const geom::SegTriKind kind = classify_segment_face(m_, a, b, v[k[0]], v[k[1]], v[k[2]]);
                 if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
                 met = true;
                 if (m_.is_constrained(t, f)) continue;
