@@ -155,15 +155,44 @@ std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vect
     return out;
 }
 
+// The first of edge_removals(m, v, ball), found without ranking every
+// ring in full: once a ring has a valid triangulation, the next ones are
+// searched only above its quality (RingObjective::floor), where most of
+// them stop at once. The winner, its triangulation and its quality are
+// the ones the full search gives (the first link vertex among equals,
+// since a later one must beat the floor strictly). On the feeder body the
+// full ranking of every link vertex's ring was 6.6% of the recovery.
+bool best_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& ball, Removal& best) {
+    mesh::RingObjective above_best;  // tet_quality, as best_ring_triangulation's default
+    Removal r;
+    bool found = false;
+    for (const auto& [x, t] : link_vertices_with_tets(m, v, ball)) {
+        if (!mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
+        if (!mesh::best_ring_triangulation(m, v, x, r.shell, r.triangles, &r.min_quality, above_best)) continue;
+        r.x = x;
+        above_best.floor = r.min_quality;
+        std::swap(best, r);
+        found = true;
+    }
+    return found;
+}
+
+bool apply_removal(TetMesh& m, VertexId v, const Removal& r, std::set<TetId>& region) {
+    std::vector<TetId> created;
+    if (mesh::transform_shell(m, v, r.x, r.shell, r.triangles, &created) != mesh::FlipResult::kDone) return false;
+    for (TetId t : r.shell.tets) region.erase(t);
+    region.insert(created.begin(), created.end());
+    return true;
+}
+
 // One edge removal at v (the best valid one that replace_tets accepts).
 bool remove_one_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region) {
-    for (const Removal& r : edge_removals(m, v, ball)) {
-        std::vector<TetId> created;
-        if (mesh::transform_shell(m, v, r.x, r.shell, r.triangles, &created) != mesh::FlipResult::kDone) continue;
-        for (TetId t : r.shell.tets) region.erase(t);
-        region.insert(created.begin(), created.end());
-        return true;
-    }
+    Removal best;
+    if (!best_edge_removal(m, v, ball, best)) return false;
+    if (apply_removal(m, v, best, region)) return true;
+    // Refused (it leaves the mesh as it was): the others, best first.
+    for (const Removal& r : edge_removals(m, v, ball))
+        if (r.x != best.x && apply_removal(m, v, r, region)) return true;
     return false;
 }
 
