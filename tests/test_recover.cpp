@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <random>
 #include <set>
 
 #include "delaunay/delaunay.hpp"
@@ -12,8 +13,10 @@
 #include "recover/constraint_faces.hpp"
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
+#include "recover/segment_walk.hpp"
 #include "geom/point_in_triangle.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh_test_util.hpp"
 #include "test_util.hpp"
 
 using cbr::mesh::TetId;
@@ -276,4 +279,54 @@ TEST_CASE("the Schonhardt prism: flips are not enough; splitting leaves a Steine
         for (const Triangle& t : tris)
             CHECK_FALSE(cbr::geom::point_in_triangle(m.point(s), m.point(t[0]), m.point(t[1]), m.point(t[2])));
     CHECK(cbr::mesh::check_mesh(m).ok());
+}
+
+// classify_segment_face (recover/segment_walk) answers a face at one end of
+// the segment with one orientation: it must give classify_segment_triangle's
+// kind on every face and segment, including faces at an end whose plane
+// holds the other end (on a grid, many), where it must not take the
+// shortcut.
+TEST_CASE("classify_segment_face gives classify_segment_triangle's kind, shortcut or not") {
+    for (const bool grid : {true, false}) {
+        CAPTURE(grid);
+        const std::vector<double> xyz = grid ? cbr::test::grid_points(4) : cbr::test::random_points(60, 46);
+        const TetMesh m = cbr::test::delaunay_mesh(xyz);
+        const VertexId n = static_cast<VertexId>(m.vertex_count());
+        std::mt19937_64 rng(7);
+        std::size_t at_one_end = 0, in_plane = 0, compared = 0;
+        for (int pair = 0; pair < 200; ++pair) {
+            const VertexId u = static_cast<VertexId>(rng() % n);
+            VertexId w = static_cast<VertexId>(rng() % n);
+            if (w == u) w = (w + 1) % n;
+            for (TetId t = 0; t < m.slot_count(); ++t) {
+                if (m.is_free(t) || m.is_ghost(t)) continue;
+                for (int f = 0; f < 4; ++f) {
+                    const int* k = cbr::mesh::kFaceVertices[f];
+                    const VertexId a = m.vertex(t, k[0]), b = m.vertex(t, k[1]), c = m.vertex(t, k[2]);
+                    const bool at_u = a == u || b == u || c == u, at_w = a == w || b == w || c == w;
+                    if (at_u != at_w) {
+                        ++at_one_end;
+                        if (cbr::geom::orient3d(m.point(a), m.point(b), m.point(c), m.point(at_u ? w : u)) == 0)
+                            ++in_plane;
+                    }
+                    const auto expected =
+                        cbr::geom::classify_segment_triangle(m.point(u), m.point(w), m.point(a), m.point(b),
+                                                             m.point(c))
+                            .kind;
+                    const auto got = cbr::recover::classify_segment_face(m, u, w, a, b, c);
+                    if (got != expected) {
+                        CAPTURE(u);
+                        CAPTURE(w);
+                        CAPTURE(t);
+                        CAPTURE(f);
+                        CHECK(static_cast<int>(got) == static_cast<int>(expected));
+                    }
+                    ++compared;
+                }
+            }
+        }
+        MESSAGE("compared " << compared << ", at one end " << at_one_end << ", in its plane " << in_plane);
+        CHECK(at_one_end > 0);
+        if (grid) CHECK(in_plane > 0);  // the fallback is exercised
+    }
 }
