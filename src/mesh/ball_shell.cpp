@@ -138,13 +138,16 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out, st
     return false;
 }
 
-TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
-    // The breadth-first walk of ball(), returning the first tetrahedron of
-    // its order that has v. Each one is tested as it joins the list rather
-    // than when its turn comes: the same one is found (the list is in the
-    // same order either way), without expanding the tetrahedra before it.
-    if (!live(m, start) || vertex_index(m, start, u) < 0) return kNoTet;
-    if (vertex_index(m, start, v) >= 0) return start;
+namespace {
+
+// The breadth-first walk of ball(), returning the first tetrahedron of
+// its order that `accept` takes. Each one is tested as it joins the list
+// rather than when its turn comes: the same one is found (the list is in
+// the same order either way), without expanding the tetrahedra before it.
+template <typename Accept>
+TetId first_accepted(const TetMesh& m, VertexId v, TetId start, const Accept& accept) {
+    if (!live(m, start) || vertex_index(m, start, v) < 0) return kNoTet;
+    if (accept(start)) return start;
     BallScratch& scratch = fresh_scratch(m);
     SlotMarks& seen = scratch.seen;
     std::vector<TetId>& tets = scratch.queue;
@@ -153,11 +156,21 @@ TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
     tets.push_back(start);
     for (std::size_t next = 0; next < tets.size(); ++next) {
         const std::size_t tested = tets.size();
-        push_unseen_neighbors(m, tets[next], u, seen, tets);
+        push_unseen_neighbors(m, tets[next], v, seen, tets);
         for (std::size_t i = tested; i < tets.size(); ++i)
-            if (vertex_index(m, tets[i], v) >= 0) return tets[i];
+            if (accept(tets[i])) return tets[i];
     }
     return kNoTet;
+}
+
+}  // namespace
+
+TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
+    return first_accepted(m, u, start, [&](TetId t) { return vertex_index(m, t, v) >= 0; });
+}
+
+TetId first_in_ball(const TetMesh& m, VertexId v, TetId start, const std::function<bool(TetId)>& accept) {
+    return first_accepted(m, v, start, accept);
 }
 
 std::vector<TetId> incident_tets(const TetMesh& m) {

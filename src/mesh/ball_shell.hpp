@@ -5,6 +5,7 @@
 // set of ghosts, the shell of a hull edge contains two ghosts.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -42,6 +43,11 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out,
 // A tetrahedron containing edge uv, found in the ball of u (`start`
 // contains u); kNoTet when uv is not an edge.
 TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v);
+
+// The first tetrahedron of v's ball, in ball()'s order, that `accept`
+// takes; the walk goes no further than needed to find it. kNoTet when
+// none does, or when `start` is not a live tetrahedron containing v.
+TetId first_in_ball(const TetMesh& m, VertexId v, TetId start, const std::function<bool(TetId)>& accept);
 
 // One live tetrahedron per vertex (a finite one when the vertex has any;
 // kNoTet for a vertex in no tetrahedron), in one pass over the mesh.

@@ -263,7 +263,7 @@ bool ConformingRecovery::recover_edge(VertexId a, VertexId b) {
             points_.set_chain(a, b, std::move(chain));
             return true;
         }
-        const Crossing c = first_crossing(m_, q, incident_[q], b, scratch_);
+        const Crossing c = first_crossing(m_, q, incident_[q], b);
         std::vector<TetId> cavity;
         Position xyz{};
         if (!crossing_point(c, q, b, xyz, cavity)) return false;

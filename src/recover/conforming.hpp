@@ -81,7 +81,6 @@ private:
     mesh::TetMesh& m_;
     SurfacePoints& points_;
     std::vector<mesh::TetId> incident_;
-    std::vector<mesh::TetId> scratch_;
     ProtectedInserter inserter_;  // keeps its scratch storage across insertions
     std::string why_;
 };

@@ -210,7 +210,7 @@ private:
         return true;
     }
 
-    Crossing first_crossing(VertexId u, VertexId w) { return recover::first_crossing(m_, u, incident_[u], w, ball_); }
+    Crossing first_crossing(VertexId u, VertexId w) { return recover::first_crossing(m_, u, incident_[u], w); }
 
     bool remove_crossing(const Crossing& c) {
         created_.clear();
@@ -476,7 +476,7 @@ private:
     // The mesh's state: a new id after each flip, the old one back after
     // a rollback.
     FailedSearches::State state_ = 1, last_state_ = 1;
-    std::vector<TetId> ball_, created_;
+    std::vector<TetId> created_;
     mesh::Shell shell_;
     std::vector<mesh::Shell> shells_;
     std::vector<std::vector<std::size_t>> orders_;  // per nesting level, as shells_: the ring positions to try

@@ -18,13 +18,13 @@ struct Crossing {
     mesh::VertexId x = 0, y = 0;     // kEdge: the edge crossed; kVertex: x is the vertex
 };
 
-// The finite tetrahedron of u's ball whose cone at u holds w, and what the
+// The finite tetrahedron of u's ball whose cone at u holds w (the first in
+// mesh::ball's order when w is on the boundary of several), and what the
 // segment crosses there: the opposite face, one of its edges, or a vertex
 // (when the segment runs through it). `start` is a tetrahedron containing
-// u; `scratch` is reused storage. kNone when u's ball has no such
-// tetrahedron (w outside the hull seen from u).
-Crossing first_crossing(const mesh::TetMesh& m, mesh::VertexId u, mesh::TetId start, mesh::VertexId w,
-                        std::vector<mesh::TetId>& scratch);
+// u. kNone when u's ball has no such tetrahedron (w outside the hull seen
+// from u).
+Crossing first_crossing(const mesh::TetMesh& m, mesh::VertexId u, mesh::TetId start, mesh::VertexId w);
 
 // geom::classify_segment_triangle's kind for segment uw and triangle abc,
 // all mesh vertices. A triangle with u or w as a vertex (most faces met
