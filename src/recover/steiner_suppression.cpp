@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <utility>
@@ -126,13 +127,20 @@ struct Removal {
 // feeder body's recovery).
 std::vector<std::pair<VertexId, TetId>> link_vertices_with_tets(const TetMesh& m, VertexId v,
                                                                 const std::vector<TetId>& ball) {
-    std::vector<std::pair<VertexId, TetId>> out;
-    for (TetId t : ball)
+    // Each (vertex, position in the ball) as one key: sorted, a vertex's
+    // first key holds its first tetrahedron in ball order.
+    std::vector<std::uint64_t> keys;
+    keys.reserve(3 * ball.size());
+    for (std::size_t k = 0; k < ball.size(); ++k)
         for (int i = 0; i < 4; ++i)
-            if (m.vertex(t, i) != v) out.emplace_back(m.vertex(t, i), t);
-    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    out.erase(std::unique(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
-              out.end());
+            if (m.vertex(ball[k], i) != v) keys.push_back((std::uint64_t{m.vertex(ball[k], i)} << 32) | k);
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::pair<VertexId, TetId>> out;
+    for (const std::uint64_t key : keys) {
+        const auto x = static_cast<VertexId>(key >> 32);
+        if (out.empty() || out.back().first != x)
+            out.emplace_back(x, ball[static_cast<std::size_t>(key & 0xffffffffu)]);
+    }
     return out;
 }
 
