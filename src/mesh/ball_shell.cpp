@@ -92,6 +92,29 @@ void push_unseen_neighbors(const TetMesh& m, TetId t, VertexId v, SlotMarks& see
     }
 }
 
+// The breadth-first walk of ball(), returning the first tetrahedron of
+// its order that `accept` takes. Each one is tested as it joins the list
+// rather than when its turn comes: the same one is found (the list is in
+// the same order either way), without expanding the tetrahedra before it.
+template <typename Accept>
+TetId first_accepted(const TetMesh& m, VertexId v, TetId start, const Accept& accept) {
+    if (!live(m, start) || vertex_index(m, start, v) < 0) return kNoTet;
+    if (accept(start)) return start;
+    BallScratch& scratch = fresh_scratch(m);
+    SlotMarks& seen = scratch.seen;
+    std::vector<TetId>& tets = scratch.queue;
+    tets.clear();
+    seen.set(start, kSeen);
+    tets.push_back(start);
+    for (std::size_t next = 0; next < tets.size(); ++next) {
+        const std::size_t tested = tets.size();
+        push_unseen_neighbors(m, tets[next], v, seen, tets);
+        for (std::size_t i = tested; i < tets.size(); ++i)
+            if (accept(tets[i])) return tets[i];
+    }
+    return kNoTet;
+}
+
 }  // namespace
 
 bool ball(const TetMesh& m, VertexId v, TetId start, std::vector<TetId>& out) {
@@ -137,33 +160,6 @@ bool shell(const TetMesh& m, VertexId u, VertexId v, TetId start, Shell& out, st
     out.ring.clear();
     return false;
 }
-
-namespace {
-
-// The breadth-first walk of ball(), returning the first tetrahedron of
-// its order that `accept` takes. Each one is tested as it joins the list
-// rather than when its turn comes: the same one is found (the list is in
-// the same order either way), without expanding the tetrahedra before it.
-template <typename Accept>
-TetId first_accepted(const TetMesh& m, VertexId v, TetId start, const Accept& accept) {
-    if (!live(m, start) || vertex_index(m, start, v) < 0) return kNoTet;
-    if (accept(start)) return start;
-    BallScratch& scratch = fresh_scratch(m);
-    SlotMarks& seen = scratch.seen;
-    std::vector<TetId>& tets = scratch.queue;
-    tets.clear();
-    seen.set(start, kSeen);
-    tets.push_back(start);
-    for (std::size_t next = 0; next < tets.size(); ++next) {
-        const std::size_t tested = tets.size();
-        push_unseen_neighbors(m, tets[next], v, seen, tets);
-        for (std::size_t i = tested; i < tets.size(); ++i)
-            if (accept(tets[i])) return tets[i];
-    }
-    return kNoTet;
-}
-
-}  // namespace
 
 TetId find_edge_tet(const TetMesh& m, VertexId u, TetId start, VertexId v) {
     return first_accepted(m, u, start, [&](TetId t) { return vertex_index(m, t, v) >= 0; });

@@ -4,8 +4,6 @@
 // conforming recovery (insert a point where it crosses).
 #pragma once
 
-#include <vector>
-
 #include "geom/intersect.hpp"
 #include "mesh/tet_mesh.hpp"
 
