@@ -144,37 +144,32 @@ std::vector<std::pair<VertexId, TetId>> link_vertices_with_tets(const TetMesh& m
     return out;
 }
 
-// The valid edge removals at v, best first; only the first found when
-// `first_only` (the caller asks whether there is one). `ball` is v's ball
-// as mesh::ball returns it.
-std::vector<Removal> edge_removals(const TetMesh& m, VertexId v, const std::vector<TetId>& ball,
-                                   bool first_only = false) {
-    std::vector<Removal> out;
-    for (const auto& [x, t] : link_vertices_with_tets(m, v, ball)) {
-        Removal r;
-        r.x = x;
-        if (!mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
-        r.triangles = mesh::best_ring_triangulation(m, v, x, r.shell, &r.min_quality);
-        if (!r.triangles.empty()) out.push_back(std::move(r));
-        if (first_only && !out.empty()) return out;
-    }
-    std::stable_sort(out.begin(), out.end(),
-                     [](const Removal& a, const Removal& b) { return a.min_quality > b.min_quality; });
-    return out;
+// Whether some link vertex x of v has a valid edge removal of vx. `ball`
+// is v's ball as mesh::ball returns it.
+bool has_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& ball) {
+    mesh::Shell shell;
+    std::vector<mesh::RingTriangle> triangles;
+    for (const auto& [x, t] : link_vertices_with_tets(m, v, ball))
+        if (mesh::shell(m, v, x, t, shell) && shell.size() >= 3 &&
+            mesh::best_ring_triangulation(m, v, x, shell, triangles))
+            return true;
+    return false;
 }
 
-// The first of edge_removals(m, v, ball), found without ranking every
-// ring in full: once a ring has a valid triangulation, the next ones are
-// searched only above its quality (RingObjective::floor), where most of
-// them stop at once. The winner, its triangulation and its quality are
-// the ones the full search gives (the first link vertex among equals,
-// since a later one must beat the floor strictly). On the feeder body the
-// full ranking of every link vertex's ring was 6.6% of the recovery.
-bool best_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& ball, Removal& best) {
+// The best valid edge removal at v (the largest worst tet_quality; the
+// first link vertex among equals), the link vertices in `refused` left
+// out. Once a ring has a valid triangulation, the next ones are searched
+// only above its quality (RingObjective::floor), where most of them stop
+// at once: the winner, its triangulation and quality are those of the
+// full search, since a later ring must beat the floor strictly. (Ranking
+// every ring in full was 6.6% of the feeder body's recovery.)
+bool best_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& ball,
+                       const std::vector<VertexId>& refused, Removal& best) {
     mesh::RingObjective above_best;  // tet_quality, as best_ring_triangulation's default
     Removal r;
     bool found = false;
     for (const auto& [x, t] : link_vertices_with_tets(m, v, ball)) {
+        if (std::find(refused.begin(), refused.end(), x) != refused.end()) continue;
         if (!mesh::shell(m, v, x, t, r.shell) || r.shell.size() < 3) continue;
         if (!mesh::best_ring_triangulation(m, v, x, r.shell, r.triangles, &r.min_quality, above_best)) continue;
         r.x = x;
@@ -185,22 +180,21 @@ bool best_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& b
     return found;
 }
 
-bool apply_removal(TetMesh& m, VertexId v, const Removal& r, std::set<TetId>& region) {
-    std::vector<TetId> created;
-    if (mesh::transform_shell(m, v, r.x, r.shell, r.triangles, &created) != mesh::FlipResult::kDone) return false;
-    for (TetId t : r.shell.tets) region.erase(t);
-    region.insert(created.begin(), created.end());
-    return true;
-}
-
-// One edge removal at v (the best valid one that replace_tets accepts).
+// One edge removal at v: the best valid one that transform_shell accepts.
+// A refused one leaves the mesh as it was; the next best is then the
+// next of the ranking by quality.
 bool remove_one_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region) {
+    std::vector<VertexId> refused;
     Removal best;
-    if (!best_edge_removal(m, v, ball, best)) return false;
-    if (apply_removal(m, v, best, region)) return true;
-    // Refused (it leaves the mesh as it was): the others, best first.
-    for (const Removal& r : edge_removals(m, v, ball))
-        if (r.x != best.x && apply_removal(m, v, r, region)) return true;
+    while (best_edge_removal(m, v, ball, refused, best)) {
+        std::vector<TetId> created;
+        if (mesh::transform_shell(m, v, best.x, best.shell, best.triangles, &created) == mesh::FlipResult::kDone) {
+            for (TetId t : best.shell.tets) region.erase(t);
+            region.insert(created.begin(), created.end());
+            return true;
+        }
+        refused.push_back(best.x);
+    }
     return false;
 }
 
@@ -274,7 +268,7 @@ bool flip_link_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball0, std
         TetId at_v = mesh::kNoTet;
         for (TetId k : created)
             if (mesh::vertex_index(m, k, v) >= 0) at_v = k;
-        if (at_v != mesh::kNoTet && mesh::ball(m, v, at_v, ball) && !edge_removals(m, v, ball, true).empty()) {
+        if (at_v != mesh::kNoTet && mesh::ball(m, v, at_v, ball) && has_edge_removal(m, v, ball)) {
             ++rep.link_flips;
             return true;
         }

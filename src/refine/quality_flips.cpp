@@ -1,8 +1,8 @@
 #include "refine/quality_flips.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
