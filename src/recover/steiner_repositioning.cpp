@@ -96,6 +96,33 @@ double min_quality(const TetMesh& m, const Ball& b, const double* p, std::size_t
     return q;
 }
 
+// Whether every tetrahedron of the ball with v at p rates above `bar`;
+// then `q` is the ball's minimum quality (min_quality's value). The line
+// search asks this of every step, and most steps are refused, by the same
+// tetrahedron as the step before more often than not: that one, the
+// `suspect`, is rated first, and the first tetrahedron at or under the bar
+// ends the rating and becomes the suspect.
+bool min_quality_above(const TetMesh& m, const Ball& b, const double* p, double bar, std::size_t& suspect,
+                       double& q) {
+    const auto rate = [&](std::size_t i) {
+        const auto& f = b.faces[i];
+        return mesh::tet_quality(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
+    };
+    q = rate(suspect);
+    if (q <= bar) return false;
+    for (std::size_t i = 0; i < b.faces.size(); ++i) {
+        if (i == suspect) continue;
+        const double qi = rate(i);
+        if (qi <= bar) {
+            suspect = i;
+            q = qi;
+            return false;
+        }
+        q = std::min(q, qi);
+    }
+    return true;
+}
+
 bool on_input_face(const TetMesh& m, const Ball& b, const double* p) {
     for (const auto& f : b.input_faces)
         if (geom::point_in_triangle(p, m.point(f[0]), m.point(f[1]), m.point(f[2]))) return true;
@@ -163,6 +190,7 @@ bool reposition_vertex(TetMesh& m, VertexId v, TetId start, const ConstraintFace
     double q = min_quality(m, b, cur.data(), &worst);
     if (before) *before = q;
     bool moved = false;
+    std::size_t suspect = worst;
     for (int round = 0; round < options.rounds; ++round) {
         Point best = cur;
         double best_q = q;
@@ -171,8 +199,8 @@ bool reposition_vertex(TetMesh& m, VertexId v, TetId start, const ConstraintFace
             for (int h = 0; h <= options.halvings; ++h, step /= 2) {
                 Point p;
                 for (int k = 0; k < 3; ++k) p[k] = cur[k] + step * (target[k] - cur[k]);
-                const double qp = min_quality(m, b, p.data());
-                if (qp > best_q && !on_input_face(m, b, p.data())) {
+                double qp = 0;
+                if (min_quality_above(m, b, p.data(), best_q, suspect, qp) && !on_input_face(m, b, p.data())) {
                     best_q = qp;
                     best = p;
                 }
