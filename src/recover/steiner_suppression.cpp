@@ -71,42 +71,64 @@ struct Contraction {
 };
 
 // The contraction of v onto x: ball tetrahedra without x with v replaced
-// by x (same position, so a valid one keeps its orientation sign).
-Contraction contraction_onto(const TetMesh& m, VertexId v, VertexId x, const std::vector<TetId>& ball) {
-    Contraction c;
+// by x (same position, so a valid one keeps its orientation sign). True
+// when it makes tetrahedra and every one rates above `floor` (-inf: every
+// one is valid); the rating stops at the first that does not.
+bool contraction_onto(const TetMesh& m, VertexId v, VertexId x, const std::vector<TetId>& ball, double floor,
+                      Contraction& c) {
     c.target = x;
     c.min_quality = kInf;
+    c.fresh.clear();
     for (TetId t : ball) {
         Tet k = tet_of(m, t);
         if (std::find(k.begin(), k.end(), x) != k.end()) continue;
         for (VertexId& w : k)
             if (w == v) w = x;
         c.min_quality = std::min(c.min_quality, quality(m, k));
-        if (c.min_quality == -kInf) return c;  // invalid: the caller drops it
+        if (c.min_quality <= floor) return false;
         c.fresh.push_back(k);
     }
-    return c;
+    return !c.fresh.empty();
 }
 
-// Tries the valid contractions, best minimum quality first (ties: smaller
-// target id). True when one was done; `region` then holds the new tets.
-bool contract(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region, double& min_quality) {
-    std::vector<Contraction> options;
+// The best valid contraction of v (the largest worst tet_quality; the
+// first link vertex among equals), the targets in `refused` left out,
+// searched above the best so far as best_edge_removal searches its rings:
+// a later target must beat the floor strictly, so the winner is the first
+// of a ranking of every contraction by quality. (Rating every contraction
+// in full was 2.8% of the feeder body's recovery.)
+bool best_contraction(const TetMesh& m, VertexId v, const std::vector<TetId>& ball,
+                      const std::vector<VertexId>& refused, Contraction& best) {
+    Contraction c;
+    double floor = -kInf;
+    bool found = false;
     for (VertexId x : link_vertices(m, v, ball)) {
-        Contraction c = contraction_onto(m, v, x, ball);
-        if (c.min_quality > -kInf && !c.fresh.empty()) options.push_back(std::move(c));
+        if (std::find(refused.begin(), refused.end(), x) != refused.end()) continue;
+        if (!contraction_onto(m, v, x, ball, floor, c)) continue;
+        floor = c.min_quality;
+        std::swap(best, c);
+        found = true;
     }
-    std::stable_sort(options.begin(), options.end(),
-                     [](const Contraction& a, const Contraction& b) { return a.min_quality > b.min_quality; });
-    for (const Contraction& c : options) {
+    return found;
+}
+
+// The best valid contraction that replace_tets accepts (a refused one
+// leaves the mesh as it was; the next best is then the next of the
+// ranking). True when one was done; `region` then holds the new tets.
+bool contract(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region, double& min_quality) {
+    std::vector<VertexId> refused;
+    Contraction best;
+    while (best_contraction(m, v, ball, refused, best)) {
         std::vector<TetId> created;
         // Refusals here are configurations (a link that is not star-shaped
         // from x, a constraint face), not bugs: try the next target.
-        if (mesh::replace_tets(m, ball, c.fresh, &created) != mesh::ReplaceResult::kDone) continue;
-        for (TetId t : ball) region.erase(t);
-        region.insert(created.begin(), created.end());
-        min_quality = c.min_quality;
-        return true;
+        if (mesh::replace_tets(m, ball, best.fresh, &created) == mesh::ReplaceResult::kDone) {
+            for (TetId t : ball) region.erase(t);
+            region.insert(created.begin(), created.end());
+            min_quality = best.min_quality;
+            return true;
+        }
+        refused.push_back(best.target);
     }
     return false;
 }
