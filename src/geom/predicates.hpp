@@ -15,6 +15,7 @@
 // No global mutable state: the optional counters belong to the caller.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -154,6 +155,14 @@ inline constexpr double kOrient3dErrorFactor = (8.0 + 256.0 * kUnitRoundoff) * k
 // lift times 3x3, 2 final additions); k = 16 likewise. Need 16u + 528u^2.
 inline constexpr double kInsphereErrorFactor = (16.0 + 1024.0 * kUnitRoundoff) * kUnitRoundoff;
 
+// The cheaper bound tried first: each of the 72 monomials of the insphere
+// determinant (4 lifts of 3 squares, times 4 minors of 6 products of three
+// differences) is at most M^5, M the largest absolute difference, so the
+// permanent is at most 72 M^5. M computed is at least (1 - u) M, and the
+// 4 products and the scaling round down by at most (1 - u) each: C' (1 -
+// u)^10 >= 72 gamma_16 with C' = 72 kInsphereErrorFactor, as above.
+inline constexpr double kInsphereMaxErrorFactor = 72.0 * kInsphereErrorFactor;
+
 // Sign of det[b-a, c-a, d-a] when the floating-point evaluation decides it,
 // 0 when it cannot.
 inline int orient3d_filter(const double* a, const double* b, const double* c,
@@ -207,6 +216,17 @@ inline int insphere_filter(const double* a, const double* b, const double* c, co
     const double ld = dex * dex + dey * dey + dez * dez;
 
     const double det = (la * bcd - lb * acd) + (lc * abd - ld * abc);
+
+    // Most points are far from the sphere: the bound by the largest
+    // difference decides them for half the operations of the permanent's.
+    const double mx = std::max(std::max(std::fabs(aex), std::fabs(bex)), std::max(std::fabs(cex), std::fabs(dex)));
+    const double my = std::max(std::max(std::fabs(aey), std::fabs(bey)), std::max(std::fabs(cey), std::fabs(dey)));
+    const double mz = std::max(std::max(std::fabs(aez), std::fabs(bez)), std::max(std::fabs(cez), std::fabs(dez)));
+    const double largest = std::max(mx, std::max(my, mz));
+    const double square = largest * largest;
+    const double quick = kInsphereMaxErrorFactor * (square * square * largest);
+    if (det > quick) return 1;
+    if (det < -quick) return -1;
 
     const double pab = std::fabs(ab1) + std::fabs(ab2), pac = std::fabs(ac1) + std::fabs(ac2);
     const double pad = std::fabs(ad1) + std::fabs(ad2), pbc = std::fabs(bc1) + std::fabs(bc2);
