@@ -3,14 +3,18 @@
 //
 //   cli_mesh_info OUT.mesh [SURFACE]
 //   points 2540 tetrahedra 12286 triangles 5040 regions 10 steiner 0
+//   unused points 0
 //
+// (the points no tetrahedron uses, on a line of their own).
 // With SURFACE (any format read_surface knows), also checks that the mesh
 // starts with the surface's points, bit for bit, and holds its triangles
 // and labels unchanged: prints "surface identical", or the first
 // difference and exits 1. Exit 2 when a file cannot be read.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <set>
+#include <vector>
 
 #include "io/read_surface.hpp"
 
@@ -59,6 +63,10 @@ int main(int argc, char** argv) {
     const std::set<std::int32_t> regions(m.tet_regions.begin(), m.tet_regions.end());
     std::printf("points %zu tetrahedra %zu triangles %zu regions %zu steiner %zu\n", m.num_points(), m.num_tets(),
                 m.num_triangles(), regions.size(), steiner);
+    std::vector<char> used(m.num_points(), 0);
+    for (const std::int64_t id : m.tets)
+        if (id >= 0 && static_cast<std::size_t>(id) < used.size()) used[static_cast<std::size_t>(id)] = 1;
+    std::printf("unused points %zu\n", static_cast<std::size_t>(std::count(used.begin(), used.end(), 0)));
     if (argc == 2) return 0;
     cbr::io::SurfaceMesh s;
     if (const cbr::io::Status st = cbr::io::read_surface(argv[2], s); !st) {

@@ -10,7 +10,8 @@
 #                                              installed, gmsh (-check) and
 #                                              python3-meshio read the outputs
 #                                              too (skipped when absent)
-#   test_cli.sh shared <cbr> [<data dir>]      every file of ../shared/data:
+#   test_cli.sh shared <cbr> <cli_mesh_info> [<data dir>]
+#                                              every file of ../shared/data:
 #                                              invalid/ rejected, surfaces/
 #                                              accepted; the data directory
 #                                              comes from CBR_SHARED_DATA_DIR
@@ -19,7 +20,7 @@
 set -u
 
 if [ $# -lt 2 ]; then
-    echo "usage: $0 local <cbr> <io data dir> [<cli_mesh_info>] | shared <cbr> [<data dir>]" >&2
+    echo "usage: $0 local <cbr> <io data dir> [<cli_mesh_info>] | shared <cbr> <cli_mesh_info> [<data dir>]" >&2
     exit 2
 fi
 mode=$1
@@ -479,6 +480,17 @@ run_shared() {
     expect 0 "" check "$data/surfaces/nonmanifold-vertex-hourglass.off" && report_has "non-manifold vertices +1"
     expect 0 "" check "$data/surfaces/nonmanifold-edge-two-tets.off" && report_has "non-manifold edges +1"
     expect 0 "" check "$data/surfaces/thingicsg-openscad-example016.off" && report_has "connected components +2"
+
+    # The files list no point that no tetrahedron uses: common3d-fandisk
+    # keeps 2 Steiner points, both in the exterior, which is dropped.
+    fandisk=$data/surfaces/common3d-fandisk.off
+    if expect 0 "" recover "$fandisk" -o "$tmp/fandisk.mesh" --json "$tmp/fandisk.json"; then
+        json_has "$tmp/fandisk.json" 'd["table_one"]["steiner_remaining"] == 2'
+        checks=$((checks + 1))
+        "$mesh_info" "$tmp/fandisk.mesh" "$fandisk" > "$tmp/info" 2>&1 && grep -q "^unused points 0$" "$tmp/info" &&
+            grep -q "^surface identical$" "$tmp/info" ||
+            fail "common3d-fandisk's mesh lists unused points or changed the surface: $(cat "$tmp/info")"
+    fi
 }
 
 case $mode in
@@ -487,7 +499,9 @@ local)
     run_local "$3" "${4:-}"
     ;;
 shared)
-    data=${CBR_SHARED_DATA_DIR:-${3:-}}
+    [ $# -eq 3 ] || [ $# -eq 4 ] || { echo "usage: $0 shared <cbr> <cli_mesh_info> [<data dir>]" >&2; exit 2; }
+    mesh_info=$3
+    data=${CBR_SHARED_DATA_DIR:-${4:-}}
     if [ -z "$data" ] || [ ! -d "$data/invalid" ] || [ ! -d "$data/surfaces" ]; then
         echo "SKIP: no shared data directory (${data:-unset})"
         exit 77

@@ -2,6 +2,9 @@
 // from a cbr_mesh through the public C API: points, the tetrahedra
 // returned (bounded regions, or all with CBR_PARAM_KEEP_EXTERIOR) and their
 // regions, the input triangles with their labels, which points are Steiner.
+// The points after the input's that no tetrahedron returned uses (the
+// exterior's Steiner points, unless it is kept) are left out; the others
+// keep their order, the input's their ids.
 #pragma once
 
 #include <cbr/cbr.h>
