@@ -21,7 +21,7 @@ void drop_unused_points_after(std::size_t input_points, io::VolumeMesh& v) {
     for (std::size_t i = 0; i < n; ++i) {
         if (i >= input_points && !used[i]) continue;
         renumbered[i] = static_cast<std::int64_t>(kept);
-        for (int k = 0; k < 3; ++k) v.xyz[3 * kept + static_cast<std::size_t>(k)] = v.xyz[3 * i + static_cast<std::size_t>(k)];
+        for (std::size_t k = 0; k < 3; ++k) v.xyz[3 * kept + k] = v.xyz[3 * i + k];
         if (!v.is_steiner.empty()) v.is_steiner[kept] = v.is_steiner[i];
         ++kept;
     }
