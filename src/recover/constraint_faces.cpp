@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mesh/vertex_buckets.hpp"
+
 namespace cbr::recover {
 namespace {
 
@@ -11,17 +13,6 @@ Triangle sorted(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) {
     return t;
 }
 
-// Where each vertex's bucket starts when items are filed under a vertex
-// below n: entries [start[x], start[x + 1]) are x's. `for_each_key(file)`
-// calls file(x) once per item.
-template <class ForEachKey>
-std::vector<std::uint32_t> bucket_starts(std::size_t n, ForEachKey for_each_key) {
-    std::vector<std::uint32_t> start(n + 1, 0);
-    for_each_key([&](mesh::VertexId x) { ++start[x + 1]; });
-    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    return start;
-}
-
 // Files the triangles of `tris` that `keep` accepts under their smallest id
 // (below n): entries [first[x], first[x + 1]) hold (middle, largest, index)
 // of those whose smallest id is x. Entry is ConstraintFaces::Entry or a
@@ -29,7 +20,7 @@ std::vector<std::uint32_t> bucket_starts(std::size_t n, ForEachKey for_each_key)
 template <class Entry, class Keep>
 void file_by_smallest(std::size_t n, const std::vector<Triangle>& tris, Keep keep, std::vector<std::uint32_t>& first,
                       std::vector<Entry>& entries) {
-    first = bucket_starts(n, [&](auto file) {
+    first = mesh::bucket_starts<std::uint32_t>(n, [&](auto file) {
         for (const Triangle& t : tris)
             if (keep(t)) file(std::min({t[0], t[1], t[2]}));
     });
@@ -74,7 +65,7 @@ ConstraintFaces::ConstraintFaces(std::vector<Triangle> triangles, std::vector<st
 // vertex's list sorted and its repeats (an edge of two or more triangles)
 // dropped, the lists closed up in place.
 void ConstraintFaces::index_edges(std::size_t n) {
-    const std::vector<std::uint32_t> start = bucket_starts(n, [&](auto file) {
+    const std::vector<std::uint32_t> start = mesh::bucket_starts<std::uint32_t>(n, [&](auto file) {
         for (const Triangle& t : triangles_)
             for (int k = 0; k < 3; ++k) file(std::min(t[k], t[(k + 1) % 3]));
     });

@@ -80,13 +80,17 @@ BallStatus gather(const TetMesh& m, VertexId v, TetId start, const ConstraintFac
     return BallStatus::kOk;
 }
 
+// The quality of the ball tetrahedron on link face f with v at p.
+double quality_at(const TetMesh& m, const std::array<VertexId, 3>& f, const double* p) {
+    return mesh::tet_quality(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
+}
+
 // Worst quality of the ball with v at p, and the index of the worst face;
 // -inf when some tetrahedron is not strictly positive (exact).
 double min_quality(const TetMesh& m, const Ball& b, const double* p, std::size_t* worst = nullptr) {
     double q = kInf;
     for (std::size_t i = 0; i < b.faces.size(); ++i) {
-        const auto& f = b.faces[i];
-        const double qi = mesh::tet_quality(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
+        const double qi = quality_at(m, b.faces[i], p);
         if (qi < q) {
             q = qi;
             if (worst) *worst = i;
@@ -104,15 +108,11 @@ double min_quality(const TetMesh& m, const Ball& b, const double* p, std::size_t
 // ends the rating and becomes the suspect.
 bool min_quality_above(const TetMesh& m, const Ball& b, const double* p, double bar, std::size_t& suspect,
                        double& q) {
-    const auto rate = [&](std::size_t i) {
-        const auto& f = b.faces[i];
-        return mesh::tet_quality(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
-    };
-    q = rate(suspect);
+    q = quality_at(m, b.faces[suspect], p);
     if (q <= bar) return false;
     for (std::size_t i = 0; i < b.faces.size(); ++i) {
         if (i == suspect) continue;
-        const double qi = rate(i);
+        const double qi = quality_at(m, b.faces[i], p);
         if (qi <= bar) {
             suspect = i;
             q = qi;
@@ -153,7 +153,7 @@ std::vector<Point> candidates(const TetMesh& m, const Ball& b, const double* p, 
     double wsum = 0, count = 0;
     for (const auto& f : b.faces) {
         const Point ap = ideal_apex(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
-        const double q = mesh::tet_quality(m.point(f[0]), m.point(f[1]), m.point(f[2]), p);
+        const double q = quality_at(m, f, p);
         const double w = 1.0 / std::max(q * q, 1e-12);  // the bad tetrahedra pull hardest
         for (int k = 0; k < 3; ++k) {
             centroid[k] += (m.point(f[0])[k] + m.point(f[1])[k] + m.point(f[2])[k]) / 3;

@@ -65,7 +65,7 @@ std::vector<VertexId> link_vertices(const TetMesh& m, VertexId v, const std::vec
 
 // Mechanism 1 (and the 4-1 flip, which is a contraction of a ball of four).
 struct Contraction {
-    VertexId target = kGhostVertex;
+    VertexId x = kGhostVertex;  // the link vertex v goes onto
     double min_quality = -kInf;
     std::vector<Tet> fresh;
 };
@@ -76,7 +76,7 @@ struct Contraction {
 // one is valid); the rating stops at the first that does not.
 bool contraction_onto(const TetMesh& m, VertexId v, VertexId x, const std::vector<TetId>& ball, double floor,
                       Contraction& c) {
-    c.target = x;
+    c.x = x;
     c.min_quality = kInf;
     c.fresh.clear();
     for (TetId t : ball) {
@@ -112,25 +112,38 @@ bool best_contraction(const TetMesh& m, VertexId v, const std::vector<TetId>& ba
     return found;
 }
 
-// The best valid contraction that replace_tets accepts (a refused one
-// leaves the mesh as it was; the next best is then the next of the
-// ranking). True when one was done; `region` then holds the new tets.
-bool contract(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region, double& min_quality) {
+// The best choice (a Contraction or a Removal, each for a link vertex x)
+// that `apply` carries out: `find_best(refused, best)` gives the best one
+// whose x is not in `refused`; a refused one leaves the mesh as it was, so
+// the next best is then the next of the ranking. Refusals are
+// configurations (a link that is not star-shaped from x, a constraint
+// face), not bugs.
+template <class Choice, class FindBest, class Apply>
+bool apply_best(FindBest find_best, Apply apply) {
     std::vector<VertexId> refused;
-    Contraction best;
-    while (best_contraction(m, v, ball, refused, best)) {
-        std::vector<TetId> created;
-        // Refusals here are configurations (a link that is not star-shaped
-        // from x, a constraint face), not bugs: try the next target.
-        if (mesh::replace_tets(m, ball, best.fresh, &created) == mesh::ReplaceResult::kDone) {
-            for (TetId t : ball) region.erase(t);
-            region.insert(created.begin(), created.end());
-            min_quality = best.min_quality;
-            return true;
-        }
-        refused.push_back(best.target);
+    Choice best;
+    while (find_best(refused, best)) {
+        if (apply(best)) return true;
+        refused.push_back(best.x);
     }
     return false;
+}
+
+// The best valid contraction that replace_tets accepts. True when one was
+// done; `region` then holds the new tets.
+bool contract(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region, double& min_quality) {
+    return apply_best<Contraction>(
+        [&](const std::vector<VertexId>& refused, Contraction& best) {
+            return best_contraction(m, v, ball, refused, best);
+        },
+        [&](const Contraction& c) {
+            std::vector<TetId> created;
+            if (mesh::replace_tets(m, ball, c.fresh, &created) != mesh::ReplaceResult::kDone) return false;
+            for (TetId t : ball) region.erase(t);
+            region.insert(created.begin(), created.end());
+            min_quality = c.min_quality;
+            return true;
+        });
 }
 
 // An edge removal of v-x that best_ring_triangulation finds valid.
@@ -203,21 +216,19 @@ bool best_edge_removal(const TetMesh& m, VertexId v, const std::vector<TetId>& b
 }
 
 // One edge removal at v: the best valid one that transform_shell accepts.
-// A refused one leaves the mesh as it was; the next best is then the
-// next of the ranking by quality.
 bool remove_one_edge(TetMesh& m, VertexId v, const std::vector<TetId>& ball, std::set<TetId>& region) {
-    std::vector<VertexId> refused;
-    Removal best;
-    while (best_edge_removal(m, v, ball, refused, best)) {
-        std::vector<TetId> created;
-        if (mesh::transform_shell(m, v, best.x, best.shell, best.triangles, &created) == mesh::FlipResult::kDone) {
-            for (TetId t : best.shell.tets) region.erase(t);
+    return apply_best<Removal>(
+        [&](const std::vector<VertexId>& refused, Removal& best) {
+            return best_edge_removal(m, v, ball, refused, best);
+        },
+        [&](const Removal& r) {
+            std::vector<TetId> created;
+            if (mesh::transform_shell(m, v, r.x, r.shell, r.triangles, &created) != mesh::FlipResult::kDone)
+                return false;
+            for (TetId t : r.shell.tets) region.erase(t);
             region.insert(created.begin(), created.end());
             return true;
-        }
-        refused.push_back(best.x);
-    }
-    return false;
+        });
 }
 
 // A tetrahedron of the region that contains v (its ball is then found

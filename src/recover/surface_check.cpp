@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "delaunay/spatial_sort.hpp"
+#include "mesh/vertex_buckets.hpp"
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 
@@ -96,32 +97,6 @@ TriState check_triangle(const Surface& s, std::size_t t, Collector& out) {
     return TriState::Usable;
 }
 
-// Items filed under a vertex id below n (a counting sort), then each
-// vertex's few items sorted: every item in increasing (vertex, item)
-// order, for a fraction of one sort of them all (igea: 806,058 edges,
-// 268,686 triangles). `each(file)` calls file(u, item) for every item, the
-// same items in the same order on both of its calls.
-template <class Item>
-struct FiledByVertex {
-    std::vector<std::size_t> first;  // the items of vertex u: [first[u], first[u + 1])
-    std::vector<Item> items;
-};
-
-template <class Item, class Each>
-FiledByVertex<Item> file_by_vertex(std::size_t n, Each each) {
-    FiledByVertex<Item> out;
-    out.first.assign(n + 1, 0);
-    each([&](std::int64_t u, const Item&) { ++out.first[static_cast<std::size_t>(u) + 1]; });
-    for (std::size_t u = 0; u < n; ++u) out.first[u + 1] += out.first[u];
-    out.items.resize(out.first[n]);
-    std::vector<std::size_t> fill(out.first.begin(), out.first.end() - 1);
-    each([&](std::int64_t u, const Item& item) { out.items[fill[static_cast<std::size_t>(u)]++] = item; });
-    for (std::size_t u = 0; u < n; ++u)
-        std::sort(out.items.begin() + static_cast<std::ptrdiff_t>(out.first[u]),
-                  out.items.begin() + static_cast<std::ptrdiff_t>(out.first[u + 1]));
-    return out;
-}
-
 // ---------------------------------------------------------------------------
 // Pass 2: the same vertex set twice. Each later copy is reported against
 // the first one.
@@ -138,8 +113,8 @@ void find_duplicates(const Surface& s, const std::vector<TriState>& state, Colle
             return middle != o.middle ? middle < o.middle : largest != o.largest ? largest < o.largest : tri < o.tri;
         }
     };
-    const FiledByVertex<Copy> filed =
-        file_by_vertex<Copy>(static_cast<std::size_t>(s.point_count), [&](auto file) {
+    const mesh::FiledByVertex<Copy> filed =
+        mesh::file_by_vertex<Copy>(static_cast<std::size_t>(s.point_count), [&](auto file) {
             for (std::size_t t = 0; t < s.triangle_count; ++t) {
                 if (state[t] == TriState::Invalid) continue;
                 Ids v = s.ids(t);
@@ -148,7 +123,7 @@ void find_duplicates(const Surface& s, const std::vector<TriState>& state, Colle
             }
         });
     std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (std::size_t u = 0; u + 1 < filed.first.size(); ++u)
+    for (std::size_t u = 0; u < static_cast<std::size_t>(s.point_count); ++u)
         for (std::size_t i = filed.first[u]; i < filed.first[u + 1];) {
             std::size_t j = i + 1;
             for (; j < filed.first[u + 1] && filed.items[j].same_ids(filed.items[i]); ++j)
@@ -175,8 +150,8 @@ void report_edges(const Surface& s, const std::vector<TriState>& state, Collecto
         std::size_t tri;
         bool operator<(const EdgeUse& o) const { return v != o.v ? v < o.v : tri < o.tri; }
     };
-    const FiledByVertex<EdgeUse> filed =
-        file_by_vertex<EdgeUse>(static_cast<std::size_t>(s.point_count), [&](auto file) {
+    const mesh::FiledByVertex<EdgeUse> filed =
+        mesh::file_by_vertex<EdgeUse>(static_cast<std::size_t>(s.point_count), [&](auto file) {
             for (std::size_t t = 0; t < s.triangle_count; ++t) {
                 if (state[t] == TriState::Invalid) continue;
                 const Ids v = s.ids(t);
