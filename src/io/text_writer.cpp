@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <cerrno>
-#include <charconv>
 #include <cstdio>
 #include <cstring>
 
@@ -67,33 +66,15 @@ void TextWriter::flush() {
     used_ = 0;
 }
 
-TextWriter& TextWriter::put(std::string_view s) {
-    if (s.size() > buf_.size()) {
-        flush();
-        for (std::size_t i = 0; i < s.size(); i += buf_.size()) put(s.substr(i, buf_.size()));
-        return *this;
+TextWriter& TextWriter::put_long(std::string_view s) {
+    flush();
+    if (buf_.empty()) return *this;  // not open: nothing is written
+    for (std::size_t i = 0; i < s.size(); i += buf_.size()) {
+        const std::string_view part = s.substr(i, buf_.size());
+        std::memcpy(buf_.data(), part.data(), part.size());
+        used_ = part.size();
+        if (used_ == buf_.size()) flush();
     }
-    reserve_room(s.size());
-    std::memcpy(buf_.data() + used_, s.data(), s.size());
-    used_ += s.size();
-    return *this;
-}
-
-TextWriter& TextWriter::put(char c) {
-    reserve_room(1);
-    buf_[used_++] = c;
-    return *this;
-}
-
-TextWriter& TextWriter::put_int(std::int64_t v) {
-    reserve_room(24);
-    used_ = static_cast<std::size_t>(std::to_chars(buf_.data() + used_, buf_.data() + buf_.size(), v).ptr - buf_.data());
-    return *this;
-}
-
-TextWriter& TextWriter::put_double(double v) {
-    reserve_room(32);  // "-1.2345678901234567e-308" is 24
-    used_ = static_cast<std::size_t>(std::to_chars(buf_.data() + used_, buf_.data() + buf_.size(), v).ptr - buf_.data());
     return *this;
 }
 
