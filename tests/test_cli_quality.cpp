@@ -78,3 +78,47 @@ TEST_CASE("dihedral range: regular, flat and degenerate tetrahedra") {
     check_range({Point{0, 0, 0}, Point{1, 0, 0}, Point{2, 0, 0}, Point{0, 1, 0}});
     check_range({Point{0, 0, 0}, Point{0, 1, 0}, Point{1, 0, 0}, Point{2, 0, 0}});
 }
+
+TEST_CASE("Table II of a mesh: the extremes of its tetrahedra, overall and per region") {
+    // 300 random tetrahedra with their own corners (every third nearly
+    // flat), in three regions interleaved, so that the smallest and largest
+    // angles come from different tetrahedra and regions.
+    std::mt19937_64 rng(48);
+    std::uniform_real_distribution<double> coordinate(-1, 1);
+    cbr::io::VolumeMesh mesh;
+    for (std::int64_t t = 0; t < 300; ++t) {
+        std::array<Point, 4> p;
+        for (Point& q : p)
+            for (double& x : q) x = coordinate(rng);
+        if (t % 3 == 2)
+            for (int k = 0; k < 3; ++k) p[3][k] = (p[0][k] + p[1][k] + p[2][k]) / 3 + 1e-6 * p[3][k];
+        for (int i = 0; i < 4; ++i) {
+            mesh.tets.push_back(4 * t + i);
+            mesh.xyz.insert(mesh.xyz.end(), p[static_cast<std::size_t>(i)].begin(),
+                            p[static_cast<std::size_t>(i)].end());
+        }
+        mesh.tet_regions.push_back(static_cast<std::int32_t>(1 + (t / 7) % 3));
+    }
+    const cbr::cli::QualityReport report = cbr::cli::measure_quality(mesh);
+    REQUIRE(report.regions.size() == 3);
+    const auto expect = [&](const cbr::cli::QualityStats& s, std::int32_t region) {
+        double lo = 180, hi = 0;
+        std::int64_t n = 0;
+        for (std::size_t t = 0; t < mesh.num_tets(); ++t) {
+            if (region != 0 && mesh.tet_regions[t] != region) continue;
+            const double* c[4];
+            for (std::size_t i = 0; i < 4; ++i) c[i] = &mesh.xyz[3 * static_cast<std::size_t>(mesh.tets[4 * t + i])];
+            double a = 0, b = 0;
+            cbr::cli::tet_dihedral_range(c[0], c[1], c[2], c[3], a, b);
+            lo = std::min(lo, a);
+            hi = std::max(hi, b);
+            ++n;
+        }
+        CAPTURE(region);
+        CHECK(s.tets == n);
+        CHECK(s.dihedral_min_deg == lo);
+        CHECK(s.dihedral_max_deg == hi);
+    };
+    expect(report.all, 0);
+    for (const cbr::cli::RegionQuality& r : report.regions) expect(r.stats, r.region);
+}
