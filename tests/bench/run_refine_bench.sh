@@ -2,13 +2,14 @@
 # Mesh generation benchmark: libcbr (`cbr mesh`, boundary recovery then
 # full mesh generation, Du & Wang 2004 section 6) against TetGen 1.5
 # (`tetgen -pYq1.414`, the Debian package: surface kept, radius-edge bound
-# 1.414) on the same surfaces, one after the other in the same run. Both
-# meshes are measured by the same code (refine_bench_table.py, the formulas
-# of src/cli/quality.hpp) and printed per mesh and in total: tetrahedra,
+# 1.414), and with --gmsh against Gmsh's 3D Delaunay too, on the same
+# surfaces, one after the other in the same run. All meshes are measured by
+# the same code (refine_bench_table.py, the formulas of
+# src/cli/quality.hpp) and printed per mesh and in total: tetrahedra,
 # average and minimum quality q = 3 r_in / r_circ, minimum dihedral angle,
-# % of tetrahedra with q < 0.1, wall time, and the ratios libcbr / TetGen;
+# % of tetrahedra with q < 0.1, wall time, and the ratios libcbr / peer;
 # for libcbr also Table II's "q < 0.1 touching a Steiner point" (from its
-# --json report: TetGen's output does not say which points are Steiner
+# --json report: the peers' outputs do not say which points are Steiner
 # points).
 #
 #   tests/bench/run_refine_bench.sh [options] [DATA_DIR] [SURFACE...]
@@ -27,12 +28,19 @@
 #   --repeat N    run each tool N times on each surface, one run after the
 #                 other, and report the median wall time (default
 #                 $CBR_BENCH_REPEAT or 1; every run makes the same mesh)
+#   --gmsh        also run gmsh (`gmsh -3`, Mesh.Algorithm3D = 1: Delaunay;
+#                 the surface given as one discrete surface bounding one
+#                 volume, off_to_medit.py) and print a second table, cbr
+#                 against gmsh; installs the Debian package gmsh when it is
+#                 missing. Gmsh 4.8 takes minutes on the largest surfaces
+#                 (mind --timeout) and its mesh is not checked here (see
+#                 README: on one shared surface it puts points on the
+#                 surface and exits 0)
 #   --keep        keep the outputs (the work directory is printed)
 #
 # Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
 # <repo>/build-bench/refine). Extra CMake arguments: $CBR_BENCH_CMAKE_ARGS.
 # Installs the Debian package tetgen when it is missing (and says so).
-# gmsh is not run (optional in the issue; not installed here).
 #
 # Exit status: 0 when the benchmark ran (whatever each mesh did), 1 on a
 # bad command line or a failed build.
@@ -50,6 +58,7 @@ repeat=${CBR_BENCH_REPEAT:-1}
 data=
 csv=
 keep=0
+gmsh=0
 size=
 growth=
 surfaces=()
@@ -72,6 +81,7 @@ while [ $# -gt 0 ]; do
         --repeat) [ $# -ge 2 ] || usage; repeat=$2; shift 2 ;;
         --repeat=*) repeat=${1#--repeat=}; shift ;;
         --keep) keep=1; shift ;;
+        --gmsh) gmsh=1; shift ;;
         -h|--help) usage ;;
         --) shift; break ;;
         -*) echo "run_refine_bench.sh: unknown option '$1'" >&2; usage ;;
@@ -105,6 +115,12 @@ if ! command -v tetgen >/dev/null 2>&1; then
     command -v tetgen >/dev/null 2>&1 || { echo "   could not install tetgen: its columns stay empty" >&2; have_tetgen=0; }
 fi
 
+if [ "$gmsh" -eq 1 ] && ! command -v gmsh >/dev/null 2>&1; then
+    echo "== gmsh is missing: installing the Debian package gmsh (apt-get install -y gmsh)"
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y gmsh >/dev/null 2>&1 || true
+    command -v gmsh >/dev/null 2>&1 || { echo "   could not install gmsh: no gmsh table" >&2; gmsh=0; }
+fi
+
 bench_workdir refine
 
 size_args=()
@@ -115,7 +131,7 @@ if [ -n "$size" ]; then
 fi
 
 raw=$work/raw.csv
-echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele,cbr_json" >"$raw"
+echo "file,cbr_status,cbr_seconds,cbr_node,cbr_ele,tetgen_status,tetgen_seconds,tetgen_node,tetgen_ele,cbr_json,gmsh_status,gmsh_seconds,gmsh_mesh" >"$raw"
 n=${#files[@]}
 i=0
 if [ -n "$growth" ]; then size_args+=(--growth "$growth"); fi
@@ -151,9 +167,28 @@ for f in "${files[@]}"; do
             tg_status=FAILED
         fi
     fi
-    echo "$name,$cbr_status,$cbr_secs,$dir/cbr.node,$dir/cbr.ele,$tg_status,$tg_secs,$dir/tetgen/$name.1.node,$dir/tetgen/$name.1.ele,$dir/cbr.json" >>"$raw"
-    printf '   [%d/%d] %-36s cbr %-7s %8s s   tetgen %-7s %8s s\n' "$i" "$n" "$name" "$cbr_status" "$cbr_secs" \
-        "${tg_status:-n/a}" "${tg_secs:--}"
+    gm_status='' gm_secs=''
+    if [ "$gmsh" -eq 1 ]; then
+        mkdir -p "$dir/gmsh"
+        python3 "$here/off_to_medit.py" "$f" "$dir/gmsh/surface.mesh"
+        # Every surface of the file bounds the one volume; the size field
+        # comes from the surface's edges (gmsh's default).
+        printf 'Merge "surface.mesh";\nSurface Loop(1) = Surface{:};\nVolume(1) = {1};\nMesh.Algorithm3D = 1;\n' \
+            >"$dir/gmsh/volume.geo"
+        out=$dir/gmsh.out err=$dir/gmsh.err
+        timed_runs "$repeat" gmsh -3 "$dir/gmsh/volume.geo" -o "$dir/gmsh/volume.mesh" -format mesh -v 2
+        gm_secs=$secs
+        if [ "$rc" = timeout ]; then
+            gm_status=TIMEOUT
+        elif [ "$rc" -eq 0 ] && grep -q '^ *Tetrahedra' "$dir/gmsh/volume.mesh" 2>/dev/null; then
+            gm_status=ok
+        else
+            gm_status=FAILED
+        fi
+    fi
+    echo "$name,$cbr_status,$cbr_secs,$dir/cbr.node,$dir/cbr.ele,$tg_status,$tg_secs,$dir/tetgen/$name.1.node,$dir/tetgen/$name.1.ele,$dir/cbr.json,$gm_status,$gm_secs,$dir/gmsh/volume.mesh" >>"$raw"
+    printf '   [%d/%d] %-36s cbr %-7s %8s s   tetgen %-7s %8s s%s\n' "$i" "$n" "$name" "$cbr_status" "$cbr_secs" \
+        "${tg_status:-n/a}" "${tg_secs:--}" "${gm_status:+   gmsh $gm_status $gm_secs s}"
 done
 
 echo
