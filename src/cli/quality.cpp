@@ -38,8 +38,8 @@ bool normalized_corners(const double* a, const double* b, const double* c, const
 // the same positive factor (the lengths of the two face normals): angles
 // compare without the arctangent (Angle::below), which runs only for the
 // minimum and maximum a Table II reports (on every edge it was 40% of
-// measuring igea's 800,000 tetrahedra after recovery; twice per
-// tetrahedron, still 3% of its `cbr recover`).
+// measuring igea's tetrahedra after recovery; twice per tetrahedron,
+// still 3% of its `cbr recover`).
 struct Angle {
     double sine = 0, cosine = 1;  // 0 degrees
 

@@ -33,9 +33,10 @@
 #                 volume, off_to_medit.py) and print a second table, cbr
 #                 against gmsh; installs the Debian package gmsh when it is
 #                 missing. Gmsh 4.8 takes minutes on the largest surfaces
-#                 (mind --timeout) and its mesh is not checked here (see
-#                 README: on one shared surface it puts points on the
-#                 surface and exits 0)
+#                 (mind --timeout); its meshes are not checked here, and
+#                 its Medit writer rounds coordinates to 14 significant
+#                 digits (points given with 16 or 17 come back moved in
+#                 their last digits)
 #   --keep        keep the outputs (the work directory is printed)
 #
 # Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
