@@ -603,6 +603,21 @@ TEST_CASE("io: malformed OFF") {
     CHECK(m.tris == std::vector<std::int64_t>{0, 1, 2, 0, 2, 3});
 }
 
+TEST_CASE("io: OFF blanks and comments: a comment may touch a token, any blank separates") {
+    TempDir dir;
+    write_text(dir.file("plain.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+    // The same numbers with '#' right after a token (it ends the token and
+    // the line), tabs, CRLF, vertical tab and form feed between tokens.
+    write_text(dir.file("dense.off"),
+               "OFF#header\r\n4\t1 0#counts\n0\v0\f0#first\n1 0 0\r\n\t0 1 0 # spaced\n0 0 1#\n3 0 1 2#face\n#end");
+    SurfaceMesh plain, dense;
+    REQUIRE(read(dir.file("plain.off"), plain, false).ok());
+    const Status st = read(dir.file("dense.off"), dense, false);
+    REQUIRE_MESSAGE(st.ok(), st.message);
+    CHECK(dense.xyz == plain.xyz);
+    CHECK(dense.tris == plain.tris);
+}
+
 TEST_CASE("io: malformed OBJ") {
     TempDir dir;
     const std::string v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

@@ -52,10 +52,16 @@ std::string quote_token(std::string_view tok) {
 
 TextCursor::TextCursor(const std::string& path, std::string_view text, char comment)
     : path_(path), begin_(text.data()), p_(text.data()), end_(text.data() + text.size()),
-      comment_(comment) {}
+      comment_(comment) {
+    for (int c = 0; c < 256; ++c) {
+        const char ch = static_cast<char>(c);
+        class_[static_cast<std::size_t>(c)] =
+            static_cast<std::uint8_t>((is_blank(ch) ? kBlank : 0) | (ch == '\n' || ch == comment_ ? kStop : 0));
+    }
+}
 
 void TextCursor::skip_blanks() {
-    while (p_ != end_ && is_blank(*p_)) ++p_;
+    while (p_ != end_ && (class_of(*p_) & kBlank) != 0) ++p_;
     if (p_ != end_ && *p_ == comment_) {
         while (p_ != end_ && *p_ != '\n') ++p_;
     }
@@ -73,7 +79,7 @@ bool TextCursor::start_record() {
 
 std::string_view TextCursor::take_token() {
     const char* b = p_;
-    while (p_ != end_ && !is_blank(*p_) && *p_ != '\n' && *p_ != comment_) ++p_;
+    while (p_ != end_ && (class_of(*p_) & (kBlank | kStop)) == 0) ++p_;
     return {b, static_cast<std::size_t>(p_ - b)};
 }
 
