@@ -63,12 +63,13 @@ std::vector<double> points_in_caller_order(const cbr::delaunay::Delaunay& d) {
     return xyz;
 }
 
-// Per triangle (0-based caller ids, unchecked): whether it is a face of the
-// handle's mesh, which is always a valid tetrahedralization of its points
-// (the Delaunay mesh, or the mesh recovery or refinement left), so that
-// check_surface skips the pairs of two such faces (SurfaceCheckOptions::
-// known_faces). Empty when the mesh has no tetrahedron.
-std::vector<char> faces_of_the_mesh(const cbr_mesh& h, const std::vector<std::int64_t>& ids) {
+// Per triangle (0-based caller ids, unchecked): the facet of the handle's
+// mesh that holds it, or kNoFacet (recover::facets_of_mesh). The mesh is
+// always a valid tetrahedralization of its points (the Delaunay mesh, or
+// the mesh recovery or refinement left), so that check_surface skips the
+// pairs of two such faces (SurfaceCheckOptions::known_faces). Empty when
+// the mesh has no tetrahedron.
+std::vector<cbr::mesh::FacetRef> facets_of_the_mesh(const cbr_mesh& h, const std::vector<std::int64_t>& ids) {
     if (h.delaunay.finite_tet_count() == 0) return {};
     const auto points = static_cast<std::int64_t>(h.delaunay.mesh().vertex_count());
     std::vector<cbr::recover::Triangle> tris(ids.size() / 3);
@@ -78,7 +79,7 @@ std::vector<char> faces_of_the_mesh(const cbr_mesh& h, const std::vector<std::in
             tris[i][k] = id >= 0 && id < points ? h.delaunay.internal_id(static_cast<cbr::mesh::VertexId>(id))
                                                 : cbr::mesh::kGhostVertex;  // never a face's
         }
-    return cbr::recover::faces_of_mesh(h.delaunay.mesh(), tris);
+    return cbr::recover::facets_of_mesh(h.delaunay.mesh(), tris);
 }
 
 // The message of a check that found errors: the counts and the first error
@@ -131,27 +132,35 @@ std::int64_t listed_count(const SurfaceCheckResult& r, DefectKind kind) {
 
 }  // namespace
 
+void cbr::capi::check_faces(cbr_mesh* mesh, std::int64_t count, const std::int64_t* tris,
+                            std::vector<cbr::mesh::FacetRef>& facets) {
+    require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+    require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
+    require(count == 0 || tris != nullptr, CBR_ERR_INVALID_ARGUMENT, "tris is NULL");
+    require(count <= std::numeric_limits<std::int64_t>::max() / 3, CBR_ERR_INVALID_ARGUMENT,
+            "count is too large (" + std::to_string(count) + ")");
+    const int base = mesh->index_base;
+    std::vector<std::int64_t> ids(3 * static_cast<std::size_t>(count));
+    for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = to_zero_based(tris[k], base);
+    const std::vector<double> xyz = points_in_caller_order(mesh->delaunay);
+    cbr::recover::SurfaceCheckOptions options;
+    facets = facets_of_the_mesh(*mesh, ids);
+    std::vector<char> known(facets.size());
+    for (std::size_t i = 0; i < facets.size(); ++i) known[i] = facets[i] != cbr::recover::kNoFacet;
+    if (!known.empty()) options.known_faces = &known;
+    SurfaceCheckResult report = cbr::recover::check_surface(
+        xyz.data(), static_cast<std::int64_t>(xyz.size() / 3), ids.data(), count, options);
+    std::string message = report.ok() ? std::string() : error_message(report, base);
+    mesh->last_check = std::move(report);
+    if (!message.empty()) throw ApiError{CBR_ERR_INVALID_INPUT, std::move(message)};
+}
+
 extern "C" {
 
 CBR_API int cbr_mesh_check_faces(cbr_mesh* mesh, int64_t count, const int64_t* tris) {
     return guarded(mesh, "cbr_mesh_check_faces", [&] {
-        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
-        require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
-        require(count == 0 || tris != nullptr, CBR_ERR_INVALID_ARGUMENT, "tris is NULL");
-        require(count <= std::numeric_limits<std::int64_t>::max() / 3, CBR_ERR_INVALID_ARGUMENT,
-                "count is too large (" + std::to_string(count) + ")");
-        const int base = mesh->index_base;
-        std::vector<std::int64_t> ids(3 * static_cast<std::size_t>(count));
-        for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = to_zero_based(tris[k], base);
-        const std::vector<double> xyz = points_in_caller_order(mesh->delaunay);
-        cbr::recover::SurfaceCheckOptions options;
-        const std::vector<char> known = faces_of_the_mesh(*mesh, ids);
-        if (!known.empty()) options.known_faces = &known;
-        SurfaceCheckResult report = cbr::recover::check_surface(
-            xyz.data(), static_cast<std::int64_t>(xyz.size() / 3), ids.data(), count, options);
-        std::string message = report.ok() ? std::string() : error_message(report, base);
-        mesh->last_check = std::move(report);
-        if (!message.empty()) throw ApiError{CBR_ERR_INVALID_INPUT, std::move(message)};
+        std::vector<cbr::mesh::FacetRef> facets;
+        cbr::capi::check_faces(mesh, count, tris, facets);
         return CBR_OK;
     });
 }

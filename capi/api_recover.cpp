@@ -46,13 +46,17 @@ cbr::recover::ConstraintFaces constraint_faces(const cbr_mesh& h, std::int64_t c
 // One attempt of recovery from the Delaunay mesh as it is now, from the
 // flip state `state` (its budget 0: the caller's; another budget also
 // tries only the plain unblocking points, kRetryUnblockingTries); a retry
-// (`first` false) leaves out the last unblocking try
-// (kRetryLastUnblockingTries). The flips may run again from the Delaunay
+// (`first_present` null) leaves out the last unblocking try
+// (kRetryLastUnblockingTries). The first attempt gets the facets the
+// surface check found the triangles at, in this very mesh
+// (recover_faces' `present`). The flips may run again from the Delaunay
 // mesh (recovery.cpp, kFlipRestartShare): rebuild() gives it back, bit
 // for bit.
 cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
-                                     const cbr::recover::FlipState& state, bool first,
+                                     const cbr::recover::FlipState& state,
+                                     const std::vector<cbr::mesh::FacetRef>* first_present,
                                      cbr::recover::RecoveryStats& stats) {
+    const bool first = first_present != nullptr;
     cbr::recover::RecoveryOptions options = mesh.recovery_options;
     options.nested_order = state.nested;
     if (!first) options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryLastUnblockingTries);
@@ -61,7 +65,8 @@ cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::Constra
         options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryUnblockingTries);
     }
     const std::function<void()> delaunay_again = [&mesh] { mesh.delaunay.rebuild(); };
-    return cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options, delaunay_again);
+    return cbr::recover::recover_faces(mesh.delaunay.mesh_for_update(), faces, stats, options, delaunay_again,
+                                       first_present);
 }
 
 // The corners of a cube around every point of m, centred on their
@@ -117,6 +122,7 @@ std::vector<double> enclosing_box(const cbr::mesh::TetMesh& m) {
 // reason naming the attempts after it; the caller rebuilds the Delaunay
 // mesh.
 cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::recover::ConstraintFaces& faces,
+                                                 const std::vector<cbr::mesh::FacetRef>& present,
                                                  cbr::recover::RecoveryStats& stats,
                                                  std::vector<cbr::mesh::VertexId>& corners) {
     const cbr::recover::RecoveryOptions& options = mesh.recovery_options;
@@ -125,7 +131,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
     const std::vector<double> box = enclosing_box(mesh.delaunay.mesh());
     const auto box_first = static_cast<cbr::mesh::VertexId>(mesh.delaunay.mesh().vertex_count());
     const cbr::recover::FlipState as_given{0, options.nested_order};
-    cbr::recover::RecoveryResult first = attempt(mesh, faces, as_given, true, stats);
+    cbr::recover::RecoveryResult first = attempt(mesh, faces, as_given, &present, stats);
     if (first.ok || !first.invalid.empty() || !options.retries) return first;
     std::optional<std::string> boxed_why;  // the first boxed attempt's reason, for the message
     // An attempt that ends the attempts (a success, or a broken invariant)
@@ -143,7 +149,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
         for (const cbr::recover::FlipState& state : states) {
             mesh.delaunay.rebuild();
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, false, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, nullptr, attempt_stats);
             if (ends(r, attempt_stats)) return true;
         }
         return false;
@@ -160,7 +166,7 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
             if (!inserted || state.deepest_budget != 0) mesh.delaunay.rebuild();
             inserted = false;
             cbr::recover::RecoveryStats attempt_stats;
-            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, false, attempt_stats);
+            cbr::recover::RecoveryResult r = attempt(mesh, faces, state, nullptr, attempt_stats);
             if (r.ok) {
                 ends(r, attempt_stats);
                 stats.steiner_generated += 8;
@@ -224,9 +230,11 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         require(count >= 0, CBR_ERR_INVALID_ARGUMENT, "count is negative (" + std::to_string(count) + ")");
         require(count == 0 || tris != nullptr, CBR_ERR_INVALID_ARGUMENT, "tris is NULL");
         // The same exact checks as cbr_mesh_check_faces, before any change.
-        if (cbr_mesh_check_faces(mesh, count, tris) != CBR_OK) {
-            const std::string detail = mesh->last_error.substr(mesh->last_error.find(": ") + 2);
-            throw ApiError{CBR_ERR_INVALID_INPUT, "invalid surface: " + detail};
+        std::vector<cbr::mesh::FacetRef> present;  // per triangle: its facet in the mesh now
+        try {
+            cbr::capi::check_faces(mesh, count, tris, present);
+        } catch (const ApiError& e) {
+            throw ApiError{CBR_ERR_INVALID_INPUT, "invalid surface: " + e.message};
         }
         require(mesh->delaunay.finite_tet_count() > 0, CBR_ERR_INVALID_INPUT,
                 "there is no volume to recover faces in: the points are all coplanar (or fewer than 4)");
@@ -234,7 +242,8 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
         std::vector<cbr::mesh::VertexId> box_corners;
-        cbr::recover::RecoveryResult result = recover_in_attempts(*mesh, state.faces, state.stats, box_corners);
+        cbr::recover::RecoveryResult result =
+            recover_in_attempts(*mesh, state.faces, present, state.stats, box_corners);
         if (!result.ok) {
             mesh->delaunay.rebuild();  // the mesh stays as it was
             // The statistics of the attempt stay readable (Table I rows).

@@ -113,6 +113,15 @@ inline void require(bool condition, int status, const char* message) {
     if (!condition) throw ApiError{status, message};
 }
 
+// cbr_mesh_check_faces' checks (api_check.cpp), for it and for
+// cbr_mesh_recover_faces: throws ApiError (CBR_ERR_INVALID_INPUT with the
+// report's message) when the triangles cannot be recovered, and keeps the
+// report in mesh->last_check; `facets` gets, per triangle, the facet of
+// the mesh that holds it or recover::kNoFacet (recovery marks those
+// without looking for them again).
+void check_faces(cbr_mesh* mesh, std::int64_t count, const std::int64_t* tris,
+                 std::vector<cbr::mesh::FacetRef>& facets);
+
 // The tetrahedra the getters return: finite ones; after recovery only those
 // of bounded regions, unless CBR_PARAM_KEEP_EXTERIOR is set.
 inline bool is_returned(const cbr_mesh& h, cbr::mesh::TetId t) {

@@ -119,7 +119,7 @@ TEST_CASE("a surface made of Delaunay faces is recovered as is, and its regions 
     CHECK(region_volume == doctest::Approx(inside_volume).epsilon(1e-12));
 }
 
-TEST_CASE("faces_of_mesh: which triangles are faces of the mesh, whatever their ids") {
+TEST_CASE("facets_of_mesh: which triangles are faces of the mesh, whatever their ids, and where") {
     // The boundary of a ball of tetrahedra (every triangle a face), in
     // either orientation, mixed with triangles that are not faces (a face's
     // vertices with one replaced, all combinations of a tetrahedron's
@@ -153,19 +153,74 @@ TEST_CASE("faces_of_mesh: which triangles are faces of the mesh, whatever their 
             if (k[2] != cbr::mesh::kGhostVertex) faces.insert(k);
         }
     }
-    const std::vector<char> is_face = cbr::recover::faces_of_mesh(m, tris);
-    REQUIRE(is_face.size() == tris.size());
+    const std::vector<cbr::mesh::FacetRef> facet = cbr::recover::facets_of_mesh(m, tris);
+    REQUIRE(facet.size() == tris.size());
     std::size_t found = 0, not_found = 0;
     for (std::size_t i = 0; i < tris.size(); ++i) {
         std::array<VertexId, 3> k = tris[i];
         std::sort(k.begin(), k.end());
         const bool expected = faces.count(k) > 0;
-        CHECK_MESSAGE(static_cast<bool>(is_face[i]) == expected, "triangle " << i);
+        CHECK_MESSAGE((facet[i] != cbr::recover::kNoFacet) == expected, "triangle " << i);
         (expected ? found : not_found) += 1;
+        if (facet[i] == cbr::recover::kNoFacet) continue;
+        // The facet holds the triangle.
+        const TetId t = cbr::mesh::facet_tet(facet[i]);
+        REQUIRE(!m.is_free(t));
+        const VertexId* v = m.vertices(t);
+        const int* f = cbr::mesh::kFaceVertices[cbr::mesh::facet_face(facet[i])];
+        std::array<VertexId, 3> held = {v[f[0]], v[f[1]], v[f[2]]};
+        std::sort(held.begin(), held.end());
+        CHECK_MESSAGE(held == k, "triangle " << i);
     }
     CHECK(found >= boundary + boundary / 3 + 1);  // both orientations and the copy
     CHECK(not_found >= 4);
-    CHECK(is_face.back() == 0);
+    CHECK(facet.back() == cbr::recover::kNoFacet);
+}
+
+TEST_CASE("mark_present_faces: from the facets found, as by the scan") {
+    // Half the boundary of a ball of tetrahedra (present) and triangles
+    // that are not faces (missing): the marks and the missing list from
+    // facets_of_mesh equal the scan's; a stale facet (of a triangle that is
+    // not the one given) falls back to the scan.
+    cbr::delaunay::Delaunay d;
+    const auto xyz = cbr::test::random_points(800, 17);
+    REQUIRE(d.insert_points(xyz.data(), 800).ok);
+    const double centre[3] = {0.5, 0.5, 0.5};
+    std::vector<Triangle> tris = boundary_of(d.mesh(), tets_within(d.mesh(), centre, 0.25));
+    REQUIRE(tris.size() > 40);
+    tris.resize(tris.size() / 2);
+    for (VertexId a = 0; a + 2 < 60; a += 3) tris.push_back({a, static_cast<VertexId>(a + 200), static_cast<VertexId>(a + 400)});
+    // Distinct triangles only (ConstraintFaces' contract).
+    std::set<std::array<VertexId, 3>> seen;
+    std::vector<Triangle> distinct;
+    for (const Triangle& t : tris) {
+        std::array<VertexId, 3> k = t;
+        std::sort(k.begin(), k.end());
+        if (seen.insert(k).second) distinct.push_back(t);
+    }
+    const cbr::recover::ConstraintFaces faces(distinct, {});
+    const auto constrained = [](const TetMesh& m) {
+        std::vector<char> marks;
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            for (int f = 0; f < 4; ++f) marks.push_back(!m.is_free(t) && m.is_constrained(t, f));
+        return marks;
+    };
+    TetMesh by_scan = d.mesh(), by_facets = d.mesh(), stale = d.mesh();
+    const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(by_scan, faces);
+    const std::vector<cbr::mesh::FacetRef> found = cbr::recover::facets_of_mesh(d.mesh(), distinct);
+    CHECK(cbr::recover::mark_present_faces(by_facets, faces, &found) == missing);
+    CHECK(constrained(by_facets) == constrained(by_scan));
+    CHECK(missing.size() >= 10);
+    CHECK(missing.size() < distinct.size());
+    // A facet that holds another triangle: not trusted.
+    std::vector<cbr::mesh::FacetRef> wrong = found;
+    const std::size_t present = std::find_if(wrong.begin(), wrong.end(),
+                                             [](cbr::mesh::FacetRef r) { return r != cbr::recover::kNoFacet; }) -
+                                wrong.begin();
+    REQUIRE(present < wrong.size());
+    wrong[present] = wrong[present] ^ 1u;  // the next face of the same tetrahedron
+    CHECK(cbr::recover::mark_present_faces(stale, faces, &wrong) == missing);
+    CHECK(constrained(stale) == constrained(by_scan));
 }
 
 TEST_CASE("input triangles are found by their vertices, and their edges by their ends") {

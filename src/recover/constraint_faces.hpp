@@ -60,14 +60,23 @@ private:
     std::vector<mesh::VertexId> edge_ends_;
 };
 
+// No facet: facets_of_mesh's answer for a triangle that is not a face.
+inline constexpr mesh::FacetRef kNoFacet = ~mesh::FacetRef{0};
+
 // Marks, on both sides, every mesh face that is an input triangle as a
 // constraint face, and returns the indices of the input triangles that are
-// not faces of the mesh, in increasing order.
-std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces);
+// not faces of the mesh, in increasing order. `found`, when given, is
+// facets_of_mesh of faces' triangles, in order, on m as it is now (the
+// surface check's, just before): its facets are marked without a scan of
+// every face of m (each is checked to hold its triangle; if one does not,
+// the scan runs after all).
+std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces,
+                                            const std::vector<mesh::FacetRef>* found = nullptr);
 
-// Per triangle of `tris` (any ids, unchecked): 1 where it is a face of a
-// live tetrahedron of m, else 0 (also for an id m does not have, the ghost
-// vertex's included, or a repeated id). Changes nothing.
-std::vector<char> faces_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris);
+// Per triangle of `tris` (any ids, unchecked): the facet of a live
+// tetrahedron of m that holds it (the lower slot of the two), or kNoFacet
+// (also for an id m does not have, the ghost vertex's included, or a
+// repeated id). Changes nothing.
+std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris);
 
 }  // namespace cbr::recover

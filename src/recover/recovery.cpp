@@ -303,10 +303,11 @@ std::vector<std::size_t> first_flips(mesh::TetMesh& m, const ConstraintFaces& fa
 }  // namespace
 
 RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats,
-                             const RecoveryOptions& options, const std::function<void()>& delaunay_again) {
+                             const RecoveryOptions& options, const std::function<void()>& delaunay_again,
+                             const std::vector<mesh::FacetRef>* present) {
     RecoveryResult result;
     const std::size_t input_vertices = m.vertex_count();
-    std::vector<std::size_t> missing = mark_present_faces(m, faces);
+    std::vector<std::size_t> missing = mark_present_faces(m, faces, present);
     stats = RecoveryStats{};
     stats.missing_faces = missing.size();
 

@@ -113,9 +113,13 @@ inline constexpr int kRetryLastUnblockingTries = RecoveryOptions{}.unblocking_tr
 // the vertex count on entry never change. On failure m may have been
 // modified: the caller restores it. m must be a Delaunay mesh on entry;
 // `delaunay_again`, when given, makes m that mesh once more (recovery.cpp,
-// kFlipRestartShare: the flips may run again from it).
+// kFlipRestartShare: the flips may run again from it). `present`, when
+// given, is facets_of_mesh of the triangles on m as it is on entry (the
+// surface check's): the faces present are marked from it
+// (mark_present_faces).
 RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, RecoveryStats& stats,
                              const RecoveryOptions& options = {},
-                             const std::function<void()>& delaunay_again = {});
+                             const std::function<void()>& delaunay_again = {},
+                             const std::vector<mesh::FacetRef>* present = nullptr);
 
 }  // namespace cbr::recover
