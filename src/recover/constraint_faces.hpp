@@ -23,6 +23,7 @@ public:
 
     std::size_t size() const { return triangles_.size(); }
     const Triangle& triangle(std::size_t i) const { return triangles_[i]; }
+    const std::vector<Triangle>& triangles() const { return triangles_; }
     std::int32_t label(std::size_t i) const { return labels_[i]; }
     // Index of the triangle with vertices {a, b, c} in any order, or npos.
     std::size_t find(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) const;
@@ -39,8 +40,9 @@ private:
     // are entries [first_[x], first_[x + 1]), as (middle, largest, index).
     // Two per vertex on average, and mesh faces met in storage order have
     // nearby vertex ids (the points are inserted along a Hilbert curve), so
-    // the lookup of every mesh face (mark_present_faces, the hot loop) stays
-    // in cache, where a hash table would miss on nearly every face.
+    // the lookup of the constrained faces in storage order (regions.cpp)
+    // stays in cache, where a hash table would miss on nearly every face;
+    // facets_of_mesh files the triangles the same way.
     struct Entry {
         mesh::VertexId middle, largest;
         std::uint32_t index;
@@ -65,11 +67,11 @@ inline constexpr mesh::FacetRef kNoFacet = ~mesh::FacetRef{0};
 
 // Marks, on both sides, every mesh face that is an input triangle as a
 // constraint face, and returns the indices of the input triangles that are
-// not faces of the mesh, in increasing order. `found`, when given, is
-// facets_of_mesh of faces' triangles, in order, on m as it is now (the
-// surface check's, just before): its facets are marked without a scan of
-// every face of m (each is checked to hold its triangle; if one does not,
-// the scan runs after all).
+// not faces of the mesh, in increasing order: from facets_of_mesh of
+// faces' triangles on m, or from `found` when given, that same answer
+// computed on m as it is now (the surface check's, just before; each facet
+// is checked to hold its triangle, and if one does not, facets_of_mesh
+// runs after all).
 std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFaces& faces,
                                             const std::vector<mesh::FacetRef>* found = nullptr);
 

@@ -230,17 +230,19 @@ def main():
         print()
         gm = peer_table(rows, "gm")
         # CSV: the gmsh columns after TetGen's, on the same surface rows;
-        # the gmsh total as one more row.
+        # the gmsh total as one more row, its TetGen columns empty. A
+        # peer_table row is file, status, then (cbr, peer) pairs of tets,
+        # q avg, q min, dihedral min, % below 0.1, seconds, then stn.
+        peer = slice(3, 14, 2)
         per_mesh = len(rows)
         for i in range(per_mesh):
-            g = gm[i]
-            out[i] = out[i] + [g[3], g[5], g[7], g[9], g[11], g[13]]
+            out[i] = out[i] + gm[i][peer]
         if len(out) > per_mesh:
             out[per_mesh] = out[per_mesh] + [None] * 6
         if len(gm) > per_mesh:
             g = gm[per_mesh]
-            out.append([g[0], ""] + [g[2], None, g[4], None, g[6], None, g[8], None, g[10], None, g[12], None, g[14]]
-                       + [g[3], g[5], g[7], g[9], g[11], g[13]])
+            cbr_only = [x if k % 2 == 0 else None for k, x in enumerate(g[2:14], start=2)]
+            out.append(g[:2] + cbr_only + [g[14]] + g[peer])
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.writer(f)
