@@ -79,7 +79,7 @@ std::vector<cbr::mesh::FacetRef> facets_of_the_mesh(const cbr_mesh& h, const std
             tris[i][k] = id >= 0 && id < points ? h.delaunay.internal_id(static_cast<cbr::mesh::VertexId>(id))
                                                 : cbr::mesh::kGhostVertex;  // never a face's
         }
-    return cbr::recover::facets_of_mesh(h.delaunay.mesh(), tris);
+    return cbr::recover::facets_of_mesh(h.delaunay.mesh(), tris, cbr::capi::thread_count(h));
 }
 
 // The message of a check that found errors: the counts and the first error

@@ -123,6 +123,13 @@ CBR_API int cbr_mesh_set_param(cbr_mesh* mesh, int key, double value) {
                         "CBR_PARAM_RECOVERY_RETRIES must be 0 or 1");
                 mesh->recovery_options.retries = value != 0.0;
                 return CBR_OK;
+            case CBR_PARAM_THREADS:
+                require(value >= 0 && value <= cbr::capi::kMaxThreads && value == std::floor(value),
+                        CBR_ERR_INVALID_ARGUMENT,
+                        "CBR_PARAM_THREADS must be an integer within [0, " + std::to_string(cbr::capi::kMaxThreads) +
+                            "] (0: as many as the hardware runs at once)");
+                mesh->threads = static_cast<int>(value);
+                return CBR_OK;
             default:
                 throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
@@ -148,6 +155,7 @@ CBR_API int cbr_mesh_get_param(const cbr_mesh* mesh, int key, double* value) {
             case CBR_PARAM_RECOVERY_RETRIES:
                 *value = mesh->recovery_options.retries ? 1.0 : 0.0;
                 return CBR_OK;
+            case CBR_PARAM_THREADS: *value = mesh->threads; return CBR_OK;
             default: throw ApiError{CBR_ERR_INVALID_ARGUMENT, "unknown parameter key " + std::to_string(key)};
         }
     });

@@ -59,6 +59,7 @@ cbr::recover::RecoveryResult attempt(cbr_mesh& mesh, const cbr::recover::Constra
     const bool first = first_present != nullptr;
     cbr::recover::RecoveryOptions options = mesh.recovery_options;
     options.nested_order = state.nested;
+    options.threads = cbr::capi::thread_count(mesh);
     if (!first) options.unblocking_tries = std::min(options.unblocking_tries, cbr::recover::kRetryLastUnblockingTries);
     if (state.deepest_budget != 0) {
         options.deepest_flip_budget = state.deepest_budget;

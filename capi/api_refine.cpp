@@ -63,7 +63,7 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         try {
             state.stats = cbr::refine::refine_mesh(m, rec.faces, rec.regions.of_tet, steiner, options);
             regions = cbr::recover::classify_regions(m, rec.faces);
-            const cbr::mesh::CheckReport check = cbr::mesh::check_mesh(m);
+            const cbr::mesh::CheckReport check = cbr::mesh::check_mesh(m, cbr::capi::thread_count(*mesh));
             if (!check.ok()) throw ApiError{CBR_ERR_INTERNAL, "refinement left an invalid mesh: " + check.errors.front()};
             if (regions.count != rec.regions.count)
                 throw ApiError{CBR_ERR_INTERNAL, "refinement changed the number of regions from " +
@@ -76,7 +76,8 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         mesh->delaunay.adopt_added_vertices();  // new points: external id == internal id
         mesh->recovery.regions = std::move(regions);
         mesh->recovery.steiner = std::move(steiner);  // what cbr_mesh_steiner_points reports from now on
-        state.quality = cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner);
+        state.quality =
+            cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner, cbr::capi::thread_count(*mesh));
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;
         mesh->refine = std::move(state);

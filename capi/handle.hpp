@@ -4,9 +4,11 @@
 
 #include <cbr/cbr.h>
 
+#include <algorithm>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "delaunay/delaunay.hpp"
 #include "mesh/errors.hpp"
@@ -18,6 +20,9 @@
 #include "refine/refine_options.hpp"
 
 namespace cbr::capi {
+
+// The largest CBR_PARAM_THREADS.
+constexpr int kMaxThreads = 256;
 
 // What cbr_mesh_recover_faces leaves behind.
 struct RecoveryState {
@@ -47,6 +52,9 @@ struct cbr_mesh {
     cbr::delaunay::Delaunay delaunay;
     int index_base = 0;
     bool keep_exterior = false;
+    // CBR_PARAM_THREADS as set: 0 = as many as the hardware runs at once
+    // (thread_count() resolves it).
+    int threads = 1;
     double delaunay_seconds = 0;
     cbr::recover::RecoveryOptions recovery_options;
     cbr::capi::RecoveryState recovery;
@@ -121,6 +129,14 @@ inline void require(bool condition, int status, const char* message) {
 // without looking for them again).
 void check_faces(cbr_mesh* mesh, std::int64_t count, const std::int64_t* tris,
                  std::vector<cbr::mesh::FacetRef>& facets);
+
+// The threads CBR_PARAM_THREADS allows: as set, or for 0 as many as the
+// hardware runs at once (at least 1).
+inline int thread_count(const cbr_mesh& h) {
+    if (h.threads > 0) return h.threads;
+    const unsigned hardware = std::thread::hardware_concurrency();
+    return hardware > 0 ? static_cast<int>(std::min(hardware, unsigned{kMaxThreads})) : 1;
+}
 
 // The tetrahedra the getters return: finite ones; after recovery only those
 // of bounded regions, unless CBR_PARAM_KEEP_EXTERIOR is set.

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "cli/demo_geometry.hpp"
+#include "mesh/chunks.hpp"
 #include "delaunay/delaunay.hpp"
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
@@ -1705,6 +1706,68 @@ TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {
     const Outcome out = refine_and_check(Surface{off.xyz, off.tris}, cbr::refine::RefineOptions{}, 0.8, false);
     CHECK(out.quality.dihedral_min_deg > 5);
     CHECK(out.quality.percent_below_0_1 == 0);
+}
+
+TEST_CASE("CBR_PARAM_THREADS: the same recovery and refinement, bit for bit, with any number") {
+    // The nine-sphere box refined at size 0.1: enough tetrahedra for the
+    // read-only passes to run in chunks (mesh/chunks.hpp); test_threads
+    // checks each pass on its own.
+    const Surface s = nine_spheres();
+    const auto n = static_cast<std::int64_t>(s.xyz.size() / 3);
+    const auto count = static_cast<std::int64_t>(s.tris.size() / 3);
+    struct Run {
+        std::vector<std::int64_t> tets;
+        std::vector<double> points, stats;
+    };
+    const auto run = [&](double threads) {
+        cbr_mesh* m = nullptr;
+        REQUIRE(cbr_mesh_create(&m) == CBR_OK);
+        double v = -1;
+        CHECK(cbr_mesh_get_param(m, CBR_PARAM_THREADS, &v) == CBR_OK);
+        CHECK(v == 1);  // the default: the calling thread alone
+        REQUIRE(cbr_mesh_set_param(m, CBR_PARAM_THREADS, threads) == CBR_OK);
+        CHECK(cbr_mesh_get_param(m, CBR_PARAM_THREADS, &v) == CBR_OK);
+        CHECK(v == threads);
+        REQUIRE(cbr_mesh_insert_points(m, n, s.xyz.data()) == CBR_OK);
+        REQUIRE(cbr_mesh_recover_faces(m, count, s.tris.data(), nullptr) == CBR_OK);
+        REQUIRE(cbr_mesh_set_param(m, CBR_PARAM_REFINE_SIZE, 0.1) == CBR_OK);
+        REQUIRE(cbr_mesh_refine(m) == CBR_OK);
+        Run r;
+        r.tets.resize(4 * static_cast<std::size_t>(cbr_mesh_tet_count(m)));
+        REQUIRE(cbr_mesh_get_tets(m, r.tets.data()) == CBR_OK);
+        r.points.resize(3 * static_cast<std::size_t>(cbr_mesh_point_count(m)));
+        REQUIRE(cbr_mesh_get_points(m, r.points.data()) == CBR_OK);
+        for (int key : {CBR_STAT_STEINER_REMAINING, CBR_STAT_QUALITY_AVERAGE, CBR_STAT_QUALITY_MIN,
+                        CBR_STAT_PERCENT_ABOVE_0_4, CBR_STAT_PERCENT_BELOW_0_1, CBR_STAT_BAD_TOUCHING_STEINER,
+                        CBR_STAT_DIHEDRAL_MIN, CBR_STAT_DIHEDRAL_MAX, CBR_STAT_REFINE_TETS}) {
+            REQUIRE(cbr_mesh_get_stat(m, key, &v) == CBR_OK);
+            r.stats.push_back(v);
+        }
+        cbr_mesh_destroy(m);
+        return r;
+    };
+    const Run one = run(1);
+    REQUIRE(one.tets.size() / 4 > 2 * cbr::mesh::kMinChunk);  // the checks and Table II cut in chunks
+    for (double threads : {2.0, 5.0, 0.0}) {
+        CAPTURE(threads);
+        const Run other = run(threads);
+        CHECK(other.tets == one.tets);
+        CHECK(other.points == one.points);
+        CHECK(other.stats == one.stats);
+    }
+    // Out of range: refused, the value kept.
+    cbr_mesh* m = nullptr;
+    REQUIRE(cbr_mesh_create(&m) == CBR_OK);
+    for (double bad : {-1.0, 1.5, 257.0, std::nan("")}) {
+        CAPTURE(bad);
+        CHECK(cbr_mesh_set_param(m, CBR_PARAM_THREADS, bad) == CBR_ERR_INVALID_ARGUMENT);
+        CHECK(std::string(cbr_mesh_last_error(m)).find("CBR_PARAM_THREADS must be an integer within [0, 256]") !=
+              std::string::npos);
+    }
+    double v = -1;
+    CHECK(cbr_mesh_get_param(m, CBR_PARAM_THREADS, &v) == CBR_OK);
+    CHECK(v == 1);
+    cbr_mesh_destroy(m);
 }
 
 TEST_CASE("cbr_mesh_refine: through the C API") {

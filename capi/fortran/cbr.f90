@@ -99,6 +99,7 @@ module cbr
   integer(c_int), parameter, public :: CBR_PARAM_REFINE_GROWTH = 8
   integer(c_int), parameter, public :: CBR_PARAM_RECOVERY_DEEP_FLIPS = 9
   integer(c_int), parameter, public :: CBR_PARAM_RECOVERY_RETRIES = 10
+  integer(c_int), parameter, public :: CBR_PARAM_THREADS = 11
 
   ! Defect kinds of cbr_mesh_check_faces (cbr_mesh_defect_count, ...).
   integer(c_int), parameter, public :: CBR_DEFECT_ID_OUT_OF_RANGE = 1

@@ -146,6 +146,14 @@ extern "C" {
    takes several times as long as one attempt). 0 = the first attempt's
    failure is reported at once. 0 or 1. */
 #define CBR_PARAM_RECOVERY_RETRIES 10
+/* Threads the library may use, for the passes that only read the whole
+   mesh (the exact validity checks that end cbr_mesh_recover_faces and
+   cbr_mesh_refine, the lookup of the input triangles among the faces of
+   the mesh): 1 (default) = the calling thread alone; n > 1 = up to n
+   threads at a time, started and joined within the call; 0 = as many as
+   the hardware runs at once. Every result is the same, bit for bit,
+   whatever the value. An integer within [0, 256]. */
+#define CBR_PARAM_THREADS 11
 
 /* ------------------------------------------------------------------------ */
 /* Opaque handle                                                            */

@@ -1,9 +1,11 @@
 #include "mesh/mesh_check.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <vector>
 
 #include "geom/predicates.hpp"
+#include "mesh/chunks.hpp"
 
 namespace cbr::mesh {
 namespace {
@@ -79,6 +81,32 @@ void check_shape(const TetMesh& m, TetId t, std::vector<char>& used, CheckReport
         r.add(tet_name(m, t) + " is not positively oriented");
 }
 
+// What one chunk of the slots found: its problems in slot order, and its
+// share of the counts and of the marks that the whole check needs.
+struct ChunkCheck {
+    CheckReport report;
+    std::vector<char> used, on_hull;  // per vertex
+    std::size_t ghosts = 0, live = 0;
+};
+
+void check_slots(const TetMesh& m, TetId begin, TetId end, ChunkCheck& c) {
+    c.used.assign(m.vertex_count(), 0);
+    c.on_hull.assign(m.vertex_count(), 0);
+    for (TetId t = begin; t < end; ++t) {
+        if (m.is_free(t)) continue;
+        ++c.live;
+        check_shape(m, t, c.used, c.report);
+        check_links(m, t, c.report);
+        if (m.is_ghost(t)) {
+            ++c.ghosts;
+            for (int i = 0; i < 3; ++i) {
+                const VertexId v = m.vertex(t, i);
+                if (v < c.on_hull.size()) c.on_hull[v] = 1;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 void CheckReport::add(std::string message) {
@@ -86,31 +114,33 @@ void CheckReport::add(std::string message) {
     ++error_count;
 }
 
-CheckReport check_mesh(const TetMesh& m) {
+CheckReport check_mesh(const TetMesh& m, int threads) {
+    const std::size_t slots = m.slot_count();
+    std::vector<ChunkCheck> chunk(chunk_count(slots, threads));
+    run_chunks(slots, chunk.size(), [&](std::size_t k, std::size_t begin, std::size_t end) {
+        check_slots(m, static_cast<TetId>(begin), static_cast<TetId>(end), chunk[k]);
+    });
+    // Merged in slot order: the problems listed are the first ones of a
+    // single pass.
     CheckReport r;
-    std::vector<char> used(m.vertex_count(), 0);
     std::size_t ghosts = 0, live = 0;
-    std::vector<char> on_hull(m.vertex_count(), 0);
-    long long hull_vertices = 0;
-    for (TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t)) continue;
-        ++live;
-        check_shape(m, t, used, r);
-        check_links(m, t, r);
-        if (m.is_ghost(t)) {
-            ++ghosts;
-            for (int i = 0; i < 3; ++i) {
-                const VertexId v = m.vertex(t, i);
-                if (v < on_hull.size() && !on_hull[v]) {
-                    on_hull[v] = 1;
-                    ++hull_vertices;
-                }
-            }
+    std::vector<char>& used = chunk[0].used;
+    std::vector<char>& on_hull = chunk[0].on_hull;
+    for (std::size_t k = 0; k < chunk.size(); ++k) {
+        const ChunkCheck& c = chunk[k];
+        for (const std::string& e : c.report.errors) r.add(e);
+        r.error_count += c.report.error_count - c.report.errors.size();  // those it found but did not list
+        ghosts += c.ghosts;
+        live += c.live;
+        if (k == 0) continue;
+        for (std::size_t v = 0; v < used.size(); ++v) {
+            used[v] |= c.used[v];
+            on_hull[v] |= c.on_hull[v];
         }
     }
     if (live == 0) return r;
     // The hull is a closed triangulated sphere: F faces, 3F/2 edges.
-    const long long V = hull_vertices;
+    const long long V = std::count(on_hull.begin(), on_hull.end(), 1);
     const long long F = static_cast<long long>(ghosts);
     if (F % 2 != 0 || V - 3 * F / 2 + F != 2)
         r.add("hull is not a closed sphere: " + std::to_string(V) + " vertices, " + std::to_string(F) + " faces");

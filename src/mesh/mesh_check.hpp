@@ -19,8 +19,10 @@ struct CheckReport {
 // Combinatorics and geometry: vertex ids in range, neighbour links
 // symmetric and across the same three vertices, every finite tetrahedron
 // positively oriented (exact), ghosts well formed and the hull closed (a
-// triangulated sphere: V - E + F = 2), every vertex used.
-CheckReport check_mesh(const TetMesh& m);
+// triangulated sphere: V - E + F = 2), every vertex used. `threads`: how
+// many threads may share the work (mesh/chunks.hpp); the report is the
+// same whatever their number.
+CheckReport check_mesh(const TetMesh& m, int threads = 1);
 
 // check_mesh, plus: every face locally Delaunay under the symbolic
 // perturbation (interior faces by insphere_sos, hull faces by the ghost

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "mesh/chunks.hpp"
 #include "mesh/vertex_buckets.hpp"
 
 namespace cbr::recover {
@@ -33,12 +34,12 @@ void file_by_smallest(std::size_t n, const std::vector<Triangle>& tris, Keep kee
     }
 }
 
-// Calls visit(t, f, k) once for every face of m without the ghost vertex:
-// face f of live tetrahedron t, the lower slot of its two, k its vertices
-// in increasing order.
+// Calls visit(t, f, k) once for every face of m without the ghost vertex
+// whose lower slot of two is in [begin, end): face f of live tetrahedron
+// t, that lower slot, k its vertices in increasing order.
 template <class Visit>
-void for_each_finite_face(const mesh::TetMesh& m, Visit visit) {
-    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
+void for_each_finite_face(const mesh::TetMesh& m, mesh::TetId begin, mesh::TetId end, Visit visit) {
+    for (mesh::TetId t = begin; t < end; ++t) {
         if (m.is_free(t)) continue;
         const mesh::VertexId* v = m.vertices(t);
         for (int f = 0; f < 4; ++f) {
@@ -159,7 +160,7 @@ std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFa
     return missing;
 }
 
-std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris) {
+std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris, int threads) {
     std::vector<mesh::FacetRef> facet(tris.size(), kNoFacet);
     // The triangles with distinct ids of m, filed under their smallest id
     // (as ConstraintFaces files them; a triangle given twice is filed
@@ -175,11 +176,24 @@ std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::ve
     std::vector<std::uint32_t> first;
     std::vector<Filed> entries;
     file_by_smallest(n, tris, own, first, entries);
-    for_each_finite_face(m, [&](mesh::TetId t, int f, const Triangle& k) {
-        for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
-            if (entries[e].middle == k[1] && entries[e].largest == k[2])
-                facet[entries[e].index] = mesh::make_facet(t, f);
+    // Each chunk of the slots lists what it found; the lists are applied in
+    // slot order, as one pass would have written them.
+    struct Found {
+        std::uint32_t index;
+        mesh::FacetRef facet;
+    };
+    const std::size_t slots = m.slot_count();
+    std::vector<std::vector<Found>> found(mesh::chunk_count(slots, threads));
+    mesh::run_chunks(slots, found.size(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for_each_finite_face(m, static_cast<mesh::TetId>(begin), static_cast<mesh::TetId>(end),
+                             [&](mesh::TetId t, int f, const Triangle& k) {
+                                 for (std::uint32_t e = first[k[0]]; e < first[k[0] + 1]; ++e)
+                                     if (entries[e].middle == k[1] && entries[e].largest == k[2])
+                                         found[chunk].push_back({entries[e].index, mesh::make_facet(t, f)});
+                             });
     });
+    for (const std::vector<Found>& list : found)
+        for (const Found& x : list) facet[x.index] = x.facet;
     return facet;
 }
 

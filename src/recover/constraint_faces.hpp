@@ -78,7 +78,9 @@ std::vector<std::size_t> mark_present_faces(mesh::TetMesh& m, const ConstraintFa
 // Per triangle of `tris` (any ids, unchecked): the facet of a live
 // tetrahedron of m that holds it (the lower slot of the two), or kNoFacet
 // (also for an id m does not have, the ghost vertex's included, or a
-// repeated id). Changes nothing.
-std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris);
+// repeated id). Changes nothing. `threads`: how many threads may share the
+// scan of the mesh's faces (mesh/chunks.hpp); the same answer with any.
+std::vector<mesh::FacetRef> facets_of_mesh(const mesh::TetMesh& m, const std::vector<Triangle>& tris,
+                                           int threads = 1);
 
 }  // namespace cbr::recover

@@ -358,7 +358,7 @@ RecoveryResult recover_faces(mesh::TetMesh& m, const ConstraintFaces& faces, Rec
     result.unrecovered = std::move(missing);
     // Whatever the steps did, the mesh must be valid before it is reported
     // as recovered (recovery.md, "Invariants"): exact, once, at the end.
-    const mesh::CheckReport report = mesh::check_mesh(m);
+    const mesh::CheckReport report = mesh::check_mesh(m, options.threads);
     result.invalid = report.errors;
     result.ok = result.unrecovered.empty() && report.ok();
     return result;

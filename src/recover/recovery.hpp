@@ -70,6 +70,10 @@ struct RecoveryOptions {
     // (flip_recovery.hpp). Not in the C API: tests set kRing to reach the
     // mesh states that the later steps were made for.
     NestedOrder nested_order = NestedOrder::kBlockingFirst;
+    // Threads the passes that only read the whole mesh may use (the
+    // validity check at the end; mesh/chunks.hpp): the same result with
+    // any number. CBR_PARAM_THREADS.
+    int threads = 1;
 };
 
 // The budgets of the deepest flip round (edge removals a face) that

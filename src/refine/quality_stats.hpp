@@ -35,8 +35,9 @@ inline bool has_flagged_corner(const mesh::TetMesh& m, mesh::TetId t, const std:
 
 // Over the live finite tetrahedra t with region_of_slot[t] > 0; `steiner`:
 // the Steiner points of recovery (internal ids). All zero without any
-// tetrahedron.
+// tetrahedron. `threads`: how many threads may share the measures
+// (mesh/chunks.hpp); the table is the same, bit for bit, with any number.
 QualityTable measure_quality(const mesh::TetMesh& m, const std::vector<std::int32_t>& region_of_slot,
-                             const std::vector<mesh::VertexId>& steiner);
+                             const std::vector<mesh::VertexId>& steiner, int threads = 1);
 
 }  // namespace cbr::refine

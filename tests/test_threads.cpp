@@ -1,0 +1,149 @@
+// CBR_PARAM_THREADS: the passes that only read the whole mesh, cut into
+// chunks (mesh/chunks.hpp), give the answer of one pass, bit for bit,
+// whatever the number of threads: the validity check (its listed problems
+// in slot order and its counts), the lookup of triangles among the faces,
+// the Table II of cbr_mesh_refine.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh/chunks.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh_test_util.hpp"
+#include "recover/constraint_faces.hpp"
+#include "refine/quality_stats.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+using cbr::mesh::TetId;
+using cbr::mesh::TetMesh;
+using cbr::mesh::VertexId;
+
+// A Delaunay mesh of random points with several chunks' worth of slots.
+TetMesh large_mesh() {
+    TetMesh m = cbr::test::delaunay_mesh(cbr::test::random_points(12000, 49));
+    REQUIRE(m.slot_count() > 4 * cbr::mesh::kMinChunk);
+    return m;
+}
+
+void check_same(const cbr::mesh::CheckReport& one, const cbr::mesh::CheckReport& other) {
+    CHECK(other.error_count == one.error_count);
+    CHECK(other.errors == one.errors);
+}
+
+const int kThreadCounts[] = {2, 3, 8};
+
+}  // namespace
+
+TEST_CASE("threads: chunks cover the items once, in order, and only when large enough") {
+    CHECK(cbr::mesh::chunk_count(0, 8) == 1);
+    CHECK(cbr::mesh::chunk_count(cbr::mesh::kMinChunk * 10, 1) == 1);
+    CHECK(cbr::mesh::chunk_count(cbr::mesh::kMinChunk * 10, 0) == 1);
+    CHECK(cbr::mesh::chunk_count(cbr::mesh::kMinChunk - 1, 8) == 1);
+    CHECK(cbr::mesh::chunk_count(cbr::mesh::kMinChunk * 3, 8) == 3);
+    CHECK(cbr::mesh::chunk_count(cbr::mesh::kMinChunk * 10, 4) == 4);
+    const std::size_t count = 100003;
+    for (std::size_t chunks : {1, 2, 3, 7}) {
+        CAPTURE(chunks);
+        std::vector<int> visits(count, 0);
+        std::vector<std::size_t> begins(chunks), ends(chunks);
+        cbr::mesh::run_chunks(count, chunks, [&](std::size_t k, std::size_t begin, std::size_t end) {
+            begins[k] = begin;
+            ends[k] = end;
+            for (std::size_t i = begin; i < end; ++i) ++visits[i];
+        });
+        CHECK(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+        CHECK(begins.front() == 0);
+        CHECK(ends.back() == count);
+        for (std::size_t k = 1; k < chunks; ++k) CHECK(begins[k] == ends[k - 1]);
+    }
+}
+
+TEST_CASE("threads: an exception of a chunk comes back after every chunk has run") {
+    std::atomic<int> ran{0};
+    const auto throwing = [&](std::size_t k, std::size_t, std::size_t) {
+        ++ran;
+        if (k == 2) throw std::runtime_error("chunk 2");
+        if (k == 3) throw std::logic_error("chunk 3");
+    };
+    CHECK_THROWS_WITH_AS(cbr::mesh::run_chunks(1000, 4, throwing), "chunk 2", std::runtime_error);
+    CHECK(ran == 4);
+}
+
+TEST_CASE("threads: the validity check lists the same problems, counts the same") {
+    TetMesh m = large_mesh();
+    const cbr::mesh::CheckReport valid = cbr::mesh::check_mesh(m, 1);
+    REQUIRE(valid.ok());
+    for (int threads : kThreadCounts) {
+        CAPTURE(threads);
+        // Every vertex used and the hull closed only with every chunk's
+        // marks together.
+        check_same(valid, cbr::mesh::check_mesh(m, threads));
+    }
+    // Inverted tetrahedra spread over every chunk (more than the report
+    // lists: the first ones in slot order are listed), and a broken link.
+    std::size_t inverted = 0;
+    for (TetId t = 7; t < m.slot_count(); t += m.slot_count() / 25) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        const VertexId* v = m.vertices(t);
+        m.set_vertices(t, v[1], v[0], v[2], v[3]);
+        ++inverted;
+    }
+    REQUIRE(inverted > 12);
+    TetId last = m.slot_count() - 1;
+    while (m.is_free(last)) --last;
+    m.set_neighbor(last, 0, m.neighbor(last, 1));
+    const cbr::mesh::CheckReport broken = cbr::mesh::check_mesh(m, 1);
+    REQUIRE(broken.error_count > broken.errors.size());
+    for (int threads : kThreadCounts) {
+        CAPTURE(threads);
+        check_same(broken, cbr::mesh::check_mesh(m, threads));
+    }
+}
+
+TEST_CASE("threads: the triangles are found at the same facets") {
+    const TetMesh m = large_mesh();
+    // Every third face of the mesh, some twice, a few that are not faces.
+    std::vector<cbr::recover::Triangle> tris;
+    for (TetId t = 0; t < m.slot_count(); t += 3) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        const cbr::test::Key3 k = cbr::test::face_key(m, t, static_cast<int>(t % 4));
+        tris.push_back({k[0], k[2], k[1]});
+        if (t % 9 == 0) tris.push_back({k[1], k[0], k[2]});
+    }
+    for (VertexId a = 0; a < 30; ++a) tris.push_back({a, a + 1000, a + 2000});
+    const std::vector<cbr::mesh::FacetRef> one = cbr::recover::facets_of_mesh(m, tris, 1);
+    REQUIRE(std::count(one.begin(), one.end(), cbr::recover::kNoFacet) == 30);  // the made-up ones
+    for (int threads : kThreadCounts) {
+        CAPTURE(threads);
+        CHECK(cbr::recover::facets_of_mesh(m, tris, threads) == one);
+    }
+}
+
+TEST_CASE("threads: Table II of the refined mesh, bit for bit") {
+    const TetMesh m = large_mesh();
+    std::vector<std::int32_t> region(m.slot_count(), 0);
+    for (TetId t = 0; t < m.slot_count(); ++t) region[t] = t % 5 == 0 ? 0 : 1;  // some not measured
+    std::vector<VertexId> steiner;
+    for (VertexId v = 0; v < m.vertex_count(); v += 97) steiner.push_back(v);
+    const cbr::refine::QualityTable one = cbr::refine::measure_quality(m, region, steiner, 1);
+    REQUIRE(one.tets > 3 * cbr::mesh::kMinChunk);
+    REQUIRE(one.bad_touching_steiner > 0);
+    for (int threads : kThreadCounts) {
+        CAPTURE(threads);
+        const cbr::refine::QualityTable other = cbr::refine::measure_quality(m, region, steiner, threads);
+        CHECK(other.tets == one.tets);
+        CHECK(other.average == one.average);  // summed in slot order
+        CHECK(other.minimum == one.minimum);
+        CHECK(other.percent_above_0_4 == one.percent_above_0_4);
+        CHECK(other.percent_below_0_1 == one.percent_below_0_1);
+        CHECK(other.bad_touching_steiner == one.bad_touching_steiner);
+        CHECK(other.dihedral_min_deg == one.dihedral_min_deg);
+        CHECK(other.dihedral_max_deg == one.dihedral_max_deg);
+    }
+}
