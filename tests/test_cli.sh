@@ -193,6 +193,35 @@ run_local_outputs() {
     expect 0 "" recover --help && report_has "--no-retries     report a failure of the first attempt at once"
     expect 0 "" mesh --help && report_has "--no-retries     no further recovery attempts after a failure"
     expect 0 "" recover --no-retries "$tmp/cube.off" -o "$tmp/cube-once.mesh" && report_has "Table I"
+    # --threads N (CBR_PARAM_THREADS; test_threads and test_refine check the
+    # library's passes): in the help, refused out of range, and the same
+    # files and tables with 1 and 2 (with 2, the .mesh is written while
+    # Table II is measured; the .vtu, which holds the quality, after it).
+    expect 0 "" recover --help && report_has "--threads N      threads for the passes that only read the whole mesh"
+    expect 0 "" mesh --help && report_has "--threads N      threads for the passes that only read the whole mesh"
+    expect 1 "--threads needs a number" recover "$tmp/cube.off" -o "$tmp/c.mesh" --threads
+    expect 1 "--threads needs a whole number within \[0, 256\], not '-1'" recover "$tmp/cube.off" -o "$tmp/c.mesh" --threads -1
+    expect 1 "--threads needs a whole number within \[0, 256\], not '2.5'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --threads 2.5
+    expect 1 "--threads needs a whole number within \[0, 256\], not '257'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --threads 257
+    # A cube whose faces are split along the other diagonals than cube.off's
+    # (cube.off keeps one field point at this size: the size bound lets
+    # edges from the surface reach as far as its triangles are large),
+    # refined to about 94,000 tetrahedra: enough for the library's passes
+    # to be cut in chunks.
+    off cube-other-diagonals "0 0 0;1 0 0;1 1 0;0 1 0;0 0 1;1 0 1;1 1 1;0 1 1" \
+        "0 2 1;0 3 2;4 5 6;4 6 7;0 1 5;0 5 4;1 2 6;1 6 5;2 3 7;2 7 6;3 0 4;3 4 7"
+    for t in 1 2; do
+        for ext in mesh vtu; do
+            expect 0 "" mesh -q "$tmp/cube-other-diagonals.off" --size 0.08 -o "$tmp/threads-$t.$ext" \
+                --json "$tmp/threads-$t-$ext.json" --threads $t
+        done
+    done
+    for ext in mesh vtu; do
+        checks=$((checks + 1))
+        cmp -s "$tmp/threads-1.$ext" "$tmp/threads-2.$ext" || fail "cbr mesh --threads 2: another .$ext than with 1"
+        json_has "$tmp/threads-2-$ext.json" 'd["mesh"]["tetrahedra"] > 50000' \
+            "(lambda tables: tables(d) == tables(json.load(open('$tmp/threads-1-$ext.json'))))(lambda x: {t: {k: v for k, v in x[t].items() if not k.endswith('seconds')} for t in ('table_one', 'table_two')})"
+    done
     # An open surface with --allow-open alone: no tetrahedron, no quality.
     expect 0 "" recover --allow-open "$tmp/open.off" -o "$tmp/open.vtu" --json "$tmp/open.json" &&
         report_has "average quality +-$" && report_has "minimum dihedral angle +-$"

@@ -11,7 +11,7 @@ namespace {
 void print_help(std::FILE* out) {
     std::fprintf(out,
                  "usage: cbr mesh IN -o OUT [--size H] [--growth R] [--json FILE] [--keep-exterior] [--allow-open]\n"
-                 "       [--no-deep-flips] [--no-retries] [-q]\n"
+                 "       [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
                  "\n"
                  "Tetrahedralizes the inside of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh): boundary recovery as in cbr recover (every triangle a face,\n"
@@ -40,6 +40,8 @@ void print_help(std::FILE* out) {
                  "                   recover)\n"
                  "  --no-retries     no further recovery attempts after a failure (as in\n"
                  "                   cbr recover)\n"
+                 "  --threads N      threads for the passes that only read the whole mesh\n"
+                 "                   (as in cbr recover; 0, the default: the hardware's)\n"
                  "  -q               print nothing but errors (and no progress line)\n"
                  "\n"
                  "exit codes: 0 success; 1 usage; 2 invalid input (a file that does not\n"

@@ -146,8 +146,15 @@ void tet_dihedral_range(const double* a, const double* b, const double* c, const
 }
 
 QualityReport measure_quality(io::VolumeMesh& mesh) {
+    std::vector<double> qualities;
+    QualityReport report = measure_quality(static_cast<const io::VolumeMesh&>(mesh), qualities);
+    mesh.tet_quality.swap(qualities);
+    return report;
+}
+
+QualityReport measure_quality(const io::VolumeMesh& mesh, std::vector<double>& qualities) {
     const std::size_t nt = mesh.num_tets();
-    mesh.tet_quality.assign(nt, 0.0);
+    qualities.assign(nt, 0.0);
     Accumulator all;
     std::map<std::int32_t, Accumulator> by_region;
     Accumulator* last = nullptr;  // by_region's entry of the last tetrahedron's region
@@ -169,7 +176,7 @@ QualityReport measure_quality(io::VolumeMesh& mesh) {
             q = quality_of(p);
             dihedral_range_of(p, lo, hi);
         }
-        mesh.tet_quality[t] = q;
+        qualities[t] = q;
         all.add(q, lo, hi, steiner);
         if (last == nullptr || mesh.tet_regions[t] != last_region) {  // neighbours mostly share one
             last_region = mesh.tet_regions[t];

@@ -61,8 +61,12 @@ struct QualityReport {
     std::vector<RegionQuality> regions;  // by increasing region; filled when there are several
 };
 
-// Table II of `mesh` (points, tets, tet_regions, is_steiner). Also fills
-// mesh.tet_quality (one q per tetrahedron), which the .vtu writer stores.
+// Table II of `mesh` (points, tets, tet_regions, is_steiner; not
+// tet_quality), and q of each tetrahedron in `qualities` (one per
+// tetrahedron, what the .vtu writer stores): `mesh` is only read, so it
+// may be written to a file meanwhile.
+QualityReport measure_quality(const io::VolumeMesh& mesh, std::vector<double>& qualities);
+// The same with mesh.tet_quality filled.
 QualityReport measure_quality(io::VolumeMesh& mesh);
 
 }  // namespace cbr::cli

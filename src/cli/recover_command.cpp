@@ -11,7 +11,7 @@ namespace {
 void print_help(std::FILE* out) {
     std::fprintf(out,
                  "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open]\n"
-                 "       [--no-deep-flips] [--no-retries] [-q]\n"
+                 "       [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
                  "\n"
                  "Tetrahedralizes the points of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh) and recovers every one of its triangles as a face, without\n"
@@ -32,6 +32,10 @@ void print_help(std::FILE* out) {
                  "  --no-retries     report a failure of the first attempt at once, without\n"
                  "                   the attempts from other flip states and inside an\n"
                  "                   enclosing box (a failure then takes one attempt's time)\n"
+                 "  --threads N      threads for the passes that only read the whole mesh\n"
+                 "                   (validity checks, Table II beside writing OUT): 0\n"
+                 "                   (default) as many as the hardware runs at once; the\n"
+                 "                   results are the same with any number\n"
                  "  -q               print nothing but errors (and no progress line)\n"
                  "\n"
                  "A progress line is shown on stderr for steps longer than a second when\n"

@@ -3,8 +3,11 @@
 
 #include <cbr/cbr.h>
 
+#include <algorithm>
 #include <numeric>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -40,6 +43,42 @@ std::string degenerate_hint(const cbr_mesh* m, const io::SurfaceMesh& surface) {
            describe_flattest_triangle(margins, names) + "; see cbr check)";
 }
 
+// The threads options.threads allows (0: the hardware's).
+int thread_count(const RecoveryOptions& options) {
+    if (options.threads > 0) return options.threads;
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Writes the output on a thread of its own while this one measures Table
+// II, when there is an output, a second thread is allowed and the format
+// does not store the quality (which is not known yet). The file and the
+// table are the same as one after the other (the writer reads the mesh,
+// the measure only reads it too and fills its own array); igea after
+// recovery: 0.15 s of Table II and 0.05 s of writing. False when it did
+// not run (nothing done then).
+bool measure_while_writing(const RecoveryOptions& options, io::VolumeMesh& volume, Steps& steps,
+                           QualityReport& quality, io::Status& written) {
+    if (options.output.empty() || thread_count(options) < 2 || io::volume_file_stores_quality(options.output))
+        return false;
+    std::thread writer;
+    try {
+        writer = std::thread([&] { written = io::write_volume(options.output, volume); });  // noexcept
+    } catch (const std::system_error&) {
+        return false;  // no thread: one after the other
+    }
+    steps.begin("measuring quality and writing", true);
+    std::vector<double> qualities;
+    try {
+        quality = measure_quality(static_cast<const io::VolumeMesh&>(volume), qualities);
+    } catch (...) {
+        writer.join();
+        throw;
+    }
+    writer.join();
+    volume.tet_quality.swap(qualities);
+    return true;
+}
+
 }  // namespace
 
 RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptions& options, Steps& steps) {
@@ -54,6 +93,7 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
     status = cbr_mesh_set_param(m, CBR_PARAM_KEEP_EXTERIOR, options.keep_exterior ? 1 : 0);
     if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_RECOVERY_DEEP_FLIPS, options.deep_flips ? 1 : 0);
     if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_RECOVERY_RETRIES, options.retries ? 1 : 0);
+    if (status == CBR_OK) status = cbr_mesh_set_param(m, CBR_PARAM_THREADS, options.threads);
     if (status == CBR_OK) status = cbr_mesh_insert_points(m, np, surface.xyz.data());
     if (status != CBR_OK) return api_failure(m, status);
     const std::int64_t delaunay_tets = cbr_mesh_tet_count(m);
@@ -106,13 +146,18 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
     io::VolumeMesh volume;
     status = collect_volume(m, surface, volume);
     if (status != CBR_OK) return api_failure(m, status);
-    out.quality = measure_quality(volume);
-    out.has_quality = true;
     out.points = volume.num_points();
     out.tets = volume.num_tets();
+    io::Status written;
+    if (!measure_while_writing(options, volume, steps, out.quality, written)) {
+        out.quality = measure_quality(volume);
+        if (!options.output.empty()) {
+            steps.begin("writing", true);
+            written = io::write_volume(options.output, volume);
+        }
+    }
+    out.has_quality = true;
     if (!options.output.empty()) {
-        steps.begin("writing", true);
-        const io::Status written = io::write_volume(options.output, volume);
         if (!written.ok()) {
             out.exit_code = exit_code_for(written.kind);
             out.error = written.message;

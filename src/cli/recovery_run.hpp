@@ -29,6 +29,10 @@ struct RecoveryOptions {
     bool refine = false;
     double size = 0;
     double growth = -1;  // CBR_PARAM_REFINE_GROWTH; < 0: the library's default
+    // CBR_PARAM_THREADS (0: as many as the hardware runs at once); with
+    // more than one, the output file is also written while Table II is
+    // measured (every format but .vtu, which stores the quality).
+    int threads = 0;
 };
 
 // What cbr_mesh_refine reports (its CBR_STAT_* keys).

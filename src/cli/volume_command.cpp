@@ -31,7 +31,21 @@ struct VolumeArgs : OutputOptions {
     bool allow_open = false;
     bool deep_flips = true;
     bool retries = true;
+    int threads = 0;  // --threads N; 0: as many as the hardware runs at once
 };
+
+// The largest --threads (CBR_PARAM_THREADS' range).
+constexpr int kMaxThreads = 256;
+
+// A whole number within [0, kMaxThreads].
+bool parse_threads(const char* text, int& out) {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(text, &end, 10);
+    if (errno != 0 || end == text || *end != '\0' || v < 0 || v > kMaxThreads) return false;
+    out = static_cast<int>(v);
+    return true;
+}
 
 // A finite number > 0 (or >= 0 with allow_zero).
 bool parse_length(const char* text, double& out, bool allow_zero = false) {
@@ -71,6 +85,11 @@ int parse_args(int argc, char** argv, const VolumeCommand& command, VolumeArgs& 
             args.deep_flips = false;
         } else if (a == "--no-retries") {
             args.retries = false;
+        } else if (a == "--threads") {
+            if (i + 1 >= argc) return usage_error(name, "--threads needs a number");
+            if (!parse_threads(argv[++i], args.threads))
+                return usage_error(name, "--threads needs a whole number within [0, " + std::to_string(kMaxThreads) +
+                                             "], not '" + argv[i] + "'");
         } else if (!a.empty() && a[0] == '-') {
             return usage_error(name, "unknown option '" + a + "'");
         } else if (!args.input.empty()) {
@@ -106,6 +125,7 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
         options.allow_open = args.allow_open;
         options.deep_flips = args.deep_flips;
         options.retries = args.retries;
+        options.threads = args.threads;
         options.refine = command.refine;
         options.size = args.size;
         options.growth = args.growth;

@@ -61,6 +61,8 @@ Status validate_volume(const VolumeMesh& m) {
 
 bool is_volume_file(const std::string& path) { return writer_for(detail::lower_extension(path)) != nullptr; }
 
+bool volume_file_stores_quality(const std::string& path) { return detail::lower_extension(path) == "vtu"; }
+
 const char* volume_extensions() { return "mesh, vtu, msh, node/ele/face (TetGen)"; }
 
 Status write_volume(const std::string& path, const VolumeMesh& mesh) noexcept {

@@ -36,6 +36,10 @@ Status validate_volume(const VolumeMesh& mesh);
 // True if write_volume knows the extension of `path`.
 bool is_volume_file(const std::string& path);
 
+// True if the format of `path` stores VolumeMesh::tet_quality (.vtu): the
+// others never read it, so it may be filled while they write.
+bool volume_file_stores_quality(const std::string& path);
+
 // "mesh, vtu, msh, node/ele/face" (for help texts).
 const char* volume_extensions();
 
