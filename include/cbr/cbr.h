@@ -135,8 +135,10 @@ extern "C" {
 /* Option of cbr_mesh_recover_faces: 1 (default) = before any Steiner point
    is added, flip searches go to their deepest round (edge removals nested
    8 levels, 40,000 a face): fewer Steiner points, more time on surfaces
-   whose faces flips find hard (on the shared benchmark's ten hardest, 149
-   Steiner points in 24 s; with 0, 202 in 17.5 s). 0 = without that round.
+   whose faces flips find hard (on the 37 shared benchmark surfaces, 150
+   Steiner points inside the domain; with 0, 161 for 6.9% fewer
+   instructions; on 180 turned copies of them, 266 and 291, all
+   recovered either way). 0 = without that round.
    0 or 1. */
 #define CBR_PARAM_RECOVERY_DEEP_FLIPS 9
 /* Option of cbr_mesh_recover_faces: 1 (default) = after a failure on the
