@@ -190,7 +190,7 @@ CBR_API int cbr_mesh_insert_points(cbr_mesh* mesh, int64_t count, const double* 
 
 CBR_API int64_t cbr_mesh_point_count(const cbr_mesh* mesh) {
     if (!mesh) return -1;
-    return static_cast<int64_t>(mesh->delaunay.mesh().vertex_count());
+    return static_cast<int64_t>(cbr::capi::returned_point_count(*mesh));
 }
 
 CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh* mesh) {
@@ -204,12 +204,13 @@ CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh* mesh) {
 CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
     return guarded(mesh, "cbr_mesh_get_points", [&] {
         require_mesh(mesh);
-        const cbr::delaunay::Delaunay& d = mesh->delaunay;
-        const std::size_t n = d.mesh().vertex_count();
-        if (n == 0) return CBR_OK;
+        const cbr::mesh::TetMesh& m = mesh->delaunay.mesh();
+        if (cbr::capi::returned_point_count(*mesh) == 0) return CBR_OK;
         require(xyz_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "xyz_out is NULL");
-        for (cbr::mesh::VertexId v = 0; v < n; ++v)
-            std::memcpy(xyz_out + 3 * std::size_t{d.external_id(v)}, d.mesh().point(v), 3 * sizeof(double));
+        for (cbr::mesh::VertexId v = 0; v < m.vertex_count(); ++v) {
+            const std::int64_t id = cbr::capi::returned_id(*mesh, v);
+            if (id >= 0) std::memcpy(xyz_out + 3 * static_cast<std::size_t>(id), m.point(v), 3 * sizeof(double));
+        }
         return CBR_OK;
     });
 }
@@ -217,15 +218,14 @@ CBR_API int cbr_mesh_get_points(const cbr_mesh* mesh, double* xyz_out) {
 CBR_API int cbr_mesh_get_tets(const cbr_mesh* mesh, int64_t* tets_out) {
     return guarded(mesh, "cbr_mesh_get_tets", [&] {
         require_mesh(mesh);
-        const cbr::delaunay::Delaunay& d = mesh->delaunay;
-        const cbr::mesh::TetMesh& m = d.mesh();
+        const cbr::mesh::TetMesh& m = mesh->delaunay.mesh();
         const std::int64_t base = mesh->index_base;
         std::int64_t* out = tets_out;
         for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
             if (!cbr::capi::is_returned(*mesh, t)) continue;
             require(tets_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "tets_out is NULL");
             const cbr::mesh::VertexId* v = m.vertices(t);
-            for (int i = 0; i < 4; ++i) *out++ = std::int64_t{d.external_id(v[i])} + base;
+            for (int i = 0; i < 4; ++i) *out++ = cbr::capi::returned_id(*mesh, v[i]) + base;  // returned: never -1
         }
         return CBR_OK;
     });

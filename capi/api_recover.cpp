@@ -222,6 +222,25 @@ std::size_t steiner_inside(const cbr_mesh& h) {
 
 }  // namespace
 
+cbr::capi::InteriorPoints cbr::capi::interior_points(const cbr_mesh& h, std::size_t caller,
+                                                     const std::vector<std::int32_t>& regions) {
+    const cbr::mesh::TetMesh& m = h.delaunay.mesh();
+    InteriorPoints p;
+    p.caller = caller;
+    p.added.assign(m.vertex_count() - caller, -1);
+    for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t) || regions[t] <= 0) continue;
+        for (int i = 0; i < 4; ++i) {
+            const std::size_t id = h.delaunay.external_id(m.vertex(t, i));
+            if (id >= caller) p.added[id - caller] = 0;  // used; numbered below
+        }
+    }
+    p.count = caller;
+    for (std::int64_t& id : p.added)
+        if (id == 0) id = static_cast<std::int64_t>(p.count++);
+    return p;
+}
+
 extern "C" {
 
 CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t* tris, const int32_t* labels) {
@@ -240,6 +259,7 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         require(mesh->delaunay.finite_tet_count() > 0, CBR_ERR_INVALID_INPUT,
                 "there is no volume to recover faces in: the points are all coplanar (or fewer than 4)");
         const auto start = std::chrono::steady_clock::now();
+        const std::size_t caller_points = mesh->delaunay.mesh().vertex_count();  // only the caller's, so far
         cbr::capi::RecoveryState state;
         state.faces = constraint_faces(*mesh, count, tris, labels);
         std::vector<cbr::mesh::VertexId> box_corners;
@@ -262,6 +282,7 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
         state.steiner = box_corners;
         state.steiner.insert(state.steiner.end(), result.steiner.begin(), result.steiner.end());
         state.regions = cbr::recover::classify_regions(mesh->delaunay.mesh(), state.faces);
+        state.interior = cbr::capi::interior_points(*mesh, caller_points, state.regions.of_tet);
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;
         mesh->recovery = std::move(state);
@@ -271,16 +292,20 @@ CBR_API int cbr_mesh_recover_faces(cbr_mesh* mesh, int64_t count, const int64_t*
 
 CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh* mesh) {
     if (!mesh) return -1;
-    return static_cast<int64_t>(mesh->recovery.steiner.size());
+    const auto& steiner = mesh->recovery.steiner;
+    return std::count_if(steiner.begin(), steiner.end(),
+                         [&](cbr::mesh::VertexId v) { return cbr::capi::returned_id(*mesh, v) >= 0; });
 }
 
 CBR_API int cbr_mesh_steiner_points(const cbr_mesh* mesh, int64_t* ids_out) {
     return guarded(mesh, "cbr_mesh_steiner_points", [&] {
         require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
-        if (mesh->recovery.steiner.empty()) return CBR_OK;
+        if (cbr_mesh_steiner_count(mesh) == 0) return CBR_OK;
         require(ids_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "ids_out is NULL");
-        for (cbr::mesh::VertexId v : mesh->recovery.steiner)
-            *ids_out++ = std::int64_t{mesh->delaunay.external_id(v)} + mesh->index_base;
+        for (cbr::mesh::VertexId v : mesh->recovery.steiner) {
+            const std::int64_t id = cbr::capi::returned_id(*mesh, v);
+            if (id >= 0) *ids_out++ = id + mesh->index_base;
+        }
         return CBR_OK;
     });
 }

@@ -76,6 +76,8 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         mesh->delaunay.adopt_added_vertices();  // new points: external id == internal id
         mesh->recovery.regions = std::move(regions);
         mesh->recovery.steiner = std::move(steiner);  // what cbr_mesh_steiner_points reports from now on
+        mesh->recovery.interior =
+            cbr::capi::interior_points(*mesh, mesh->recovery.interior.caller, mesh->recovery.regions.of_tet);
         state.quality =
             cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner, cbr::capi::thread_count(*mesh));
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

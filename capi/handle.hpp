@@ -5,10 +5,12 @@
 #include <cbr/cbr.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "delaunay/delaunay.hpp"
 #include "mesh/errors.hpp"
@@ -24,9 +26,22 @@ namespace cbr::capi {
 // The largest CBR_PARAM_THREADS.
 constexpr int kMaxThreads = 256;
 
+// How the getters number the points after recovery when the exterior is
+// left out (CBR_PARAM_KEEP_EXTERIOR = 0): the caller's points keep their
+// ids; of the points added after them (Steiner points, then field
+// points), those that a tetrahedron of a bounded region uses follow in
+// their order, and those only the exterior used (Steiner points outside
+// the domain, the corners of an enclosing box) are left out.
+struct InteriorPoints {
+    std::size_t caller = 0;           // the caller's points: ids [0, caller)
+    std::vector<std::int64_t> added;  // per added point, by external id - caller: its id, or -1 (left out)
+    std::size_t count = 0;            // points the getters return
+};
+
 // What cbr_mesh_recover_faces leaves behind.
 struct RecoveryState {
     bool done = false;
+    InteriorPoints interior;  // recomputed by cbr_mesh_refine
     cbr::recover::ConstraintFaces faces;
     cbr::recover::RegionMap regions;
     cbr::recover::RecoveryStats stats;
@@ -136,6 +151,29 @@ inline int thread_count(const cbr_mesh& h) {
     if (h.threads > 0) return h.threads;
     const unsigned hardware = std::thread::hardware_concurrency();
     return hardware > 0 ? static_cast<int>(std::min(hardware, unsigned{kMaxThreads})) : 1;
+}
+
+// The numbering above for the mesh as it is, its bounded regions as
+// `regions` gives them (api_recover.cpp).
+InteriorPoints interior_points(const cbr_mesh& h, std::size_t caller, const std::vector<std::int32_t>& regions);
+
+// Whether the getters leave the exterior out (after recovery, unless
+// CBR_PARAM_KEEP_EXTERIOR is set).
+inline bool drops_exterior(const cbr_mesh& h) { return h.recovery.done && !h.keep_exterior; }
+
+// The id (0-based) the getters give internal vertex v, or -1 when they
+// leave it out.
+inline std::int64_t returned_id(const cbr_mesh& h, cbr::mesh::VertexId v) {
+    const std::int64_t id = h.delaunay.external_id(v);
+    if (!drops_exterior(h)) return id;
+    const InteriorPoints& p = h.recovery.interior;
+    const auto caller = static_cast<std::int64_t>(p.caller);
+    return id < caller ? id : p.added[static_cast<std::size_t>(id - caller)];
+}
+
+// How many points the getters return.
+inline std::size_t returned_point_count(const cbr_mesh& h) {
+    return drops_exterior(h) ? h.recovery.interior.count : h.delaunay.mesh().vertex_count();
 }
 
 // The tetrahedra the getters return: finite ones; after recovery only those

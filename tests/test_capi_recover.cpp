@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 #include <string>
 
@@ -178,29 +179,70 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
     cbr::test::OffSurface p;
     Handle h;
     const std::int64_t n = recover_fixture("prism-96-fan-caps-h3-r12.off", p, h);
-    const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
-    CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
-    CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) == static_cast<double>(steiner_count));
-    std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
-    REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
-    const std::set<std::int64_t> steiner(ids.begin(), ids.end());
-    const std::vector<double> xyz = points_of(h);
     double lo[3], hi[3];
     bounding_box(p.xyz, lo, hi);
-    // The corners: ids n .. n + 7, beyond the points' bounding box in every
-    // coordinate, used by no tetrahedron of the bounded region.
-    std::set<std::int64_t> corners;
-    for (std::int64_t v = n; v < n + 8; ++v) {
-        CHECK(steiner.count(v) == 1);
-        corners.insert(v);
+    const auto outside_box = [&](const std::vector<double>& xyz, std::int64_t v) {
         for (int k = 0; k < 3; ++k) {
             const double x = xyz[3 * static_cast<std::size_t>(v) + static_cast<std::size_t>(k)];
-            CHECK((x < lo[k] || x > hi[k]));
+            if (!(x < lo[k] || x > hi[k])) return false;
+        }
+        return true;
+    };
+    SUBCASE("with the exterior: the corners are ids n .. n + 7, outside the box, in no bounded tetrahedron") {
+        REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
+        const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
+        CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
+        CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) == static_cast<double>(steiner_count));
+        std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
+        REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
+        const std::set<std::int64_t> steiner(ids.begin(), ids.end());
+        const std::vector<double> xyz = points_of(h);
+        std::set<std::int64_t> corners;
+        for (std::int64_t v = n; v < n + 8; ++v) {
+            CHECK(steiner.count(v) == 1);
+            CHECK(outside_box(xyz, v));
+            corners.insert(v);
+        }
+        const auto tets = tets_of(h.m);
+        std::vector<std::int32_t> regions(tets.size() / 4);
+        REQUIRE(cbr_mesh_get_tet_regions(h.m, regions.data()) == CBR_OK);
+        for (std::size_t t = 0; t < regions.size(); ++t)
+            if (regions[t] > 0)
+                for (int i = 0; i < 4; ++i) CHECK(corners.count(tets[4 * t + static_cast<std::size_t>(i)]) == 0);
+        CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) <= static_cast<double>(steiner_count - 8));
+    }
+    SUBCASE("without it (the default): every point after the caller's is used, the corners are gone") {
+        const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
+        const std::int64_t np = cbr_mesh_point_count(h.m);
+        CHECK(np == n + steiner_count);
+        CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) == static_cast<double>(steiner_count));
+        CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) >= static_cast<double>(steiner_count + 8));
+        std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
+        REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
+        std::vector<std::int64_t> expected(ids.size());
+        std::iota(expected.begin(), expected.end(), n);  // the ids after the caller's close up
+        CHECK(ids == expected);
+        const std::vector<double> xyz = points_of(h);
+        std::vector<char> used(static_cast<std::size_t>(np), 0);
+        for (std::int64_t v : tets_of(h.m)) used[static_cast<std::size_t>(v)] = 1;
+        for (std::int64_t v = n; v < np; ++v) {
+            CHECK(used[static_cast<std::size_t>(v)] == 1);
+            CHECK_FALSE(outside_box(xyz, v));
         }
     }
-    const auto bounded = tets_of(h.m);
-    CHECK(std::none_of(bounded.begin(), bounded.end(), [&](std::int64_t v) { return corners.count(v) > 0; }));
-    CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) <= static_cast<double>(steiner_count - 8));
+    SUBCASE("refined: the same, the field points after the Steiner points the domain kept") {
+        REQUIRE_MESSAGE(cbr_mesh_refine(h.m) == CBR_OK, h.error());
+        const std::int64_t np = cbr_mesh_point_count(h.m);
+        std::vector<char> used(static_cast<std::size_t>(np), 0);
+        for (std::int64_t v : tets_of(h.m)) used[static_cast<std::size_t>(v)] = 1;
+        CHECK(std::all_of(used.begin() + n, used.end(), [](char u) { return u == 1; }));
+        const std::vector<double> xyz = points_of(h);
+        for (std::int64_t v = n; v < np; ++v) CHECK_FALSE(outside_box(xyz, v));
+        REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
+        CHECK(cbr_mesh_point_count(h.m) >= np + 8);  // the corners (at least) come back
+        const std::vector<double> all = points_of(h);
+        for (std::int64_t v = n; v < n + 8; ++v) CHECK(outside_box(all, v));
+    }
     // The project's exact checks of the recovered mesh.
     cbr::test::check_recovered(h.m, p.xyz, p.tris);
 }
@@ -257,6 +299,8 @@ TEST_CASE("after a failed first attempt the enclosing box comes before the other
     cbr::test::OffSurface p;
     Handle h;
     const std::int64_t n = recover_fixture("prism-96-fan-caps-h3-r12.off", p, h);
+    // The corners are in the exterior alone: the getters return them with it.
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
     const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
     CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
     REQUIRE(steiner_count >= 8);
@@ -286,6 +330,8 @@ TEST_CASE("after the enclosing box, the flips in ring order") {
     REQUIRE_MESSAGE(cbr_mesh_recover_faces(h.m, static_cast<std::int64_t>(p.tris.size() / 3), p.tris.data(),
                                            nullptr) == CBR_OK,
                     h.error());
+    // The exterior's points too: a box corner would be there alone.
+    REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
     const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
     CHECK(steiner_count < 8);
     const std::vector<double> xyz = points_of(h);

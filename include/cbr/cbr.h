@@ -97,7 +97,15 @@ extern "C" {
 #define CBR_PARAM_INDEX_BASE 1
 /* After cbr_mesh_recover_faces: 0 (default) makes cbr_mesh_tet_count and
    cbr_mesh_get_tets return the tetrahedra of the bounded regions only (what
-   a solver meshes); 1 returns the exterior (region 0) too. */
+   a solver meshes), and the point getters (cbr_mesh_point_count,
+   cbr_mesh_get_points, cbr_mesh_steiner_count, cbr_mesh_steiner_points)
+   leave out the added points that only the exterior uses (Steiner points
+   outside the domain, the corners of an enclosing box): the caller's
+   points keep their ids, the added points that the returned tetrahedra use
+   follow in their order, so every returned point after the caller's is a
+   vertex of a returned tetrahedron. 1 returns the exterior (region 0) and
+   every point. The getters read it when they run; the ids of added points
+   differ between the two when the exterior has points of its own. */
 #define CBR_PARAM_KEEP_EXTERIOR 2
 /* Options of cbr_mesh_refine (full mesh generation, the paper's section 6).
    They are read when cbr_mesh_refine runs. */
@@ -232,14 +240,16 @@ CBR_API int cbr_mesh_get_param(const cbr_mesh *mesh, int key, double *value);
      CBR_ERR_OUT_OF_MEMORY. */
 CBR_API int cbr_mesh_insert_points(cbr_mesh *mesh, int64_t count, const double *xyz);
 
-/* Number of points in the mesh; -1 for a NULL mesh. */
+/* Number of points the getters return (after recovery, without the
+   exterior's own added points unless CBR_PARAM_KEEP_EXTERIOR is set); -1
+   for a NULL mesh. */
 CBR_API int64_t cbr_mesh_point_count(const cbr_mesh *mesh);
 
 /* Number of tetrahedra cbr_mesh_get_tets returns; -1 for a NULL mesh.
    Fewer than 4 points, or all points coplanar, give 0. */
 CBR_API int64_t cbr_mesh_tet_count(const cbr_mesh *mesh);
 
-/* Copies the coordinates of all points, in id order, into xyz_out
+/* Copies the coordinates of the points (cbr_mesh_point_count), in id order, into xyz_out
    (3 * cbr_mesh_point_count doubles). The coordinates are bit-identical to
    the ones inserted. xyz_out may be NULL when there are no points. */
 CBR_API int cbr_mesh_get_points(const cbr_mesh *mesh, double *xyz_out);
@@ -271,7 +281,8 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
 /* Steiner points that are vertices of tetrahedra of bounded regions
    (region > 0): those the caller's mesh contains. CBR_STAT_STEINER_REMAINING
    also counts the Steiner points of the exterior (region 0), which
-   cbr_mesh_get_tets drops unless CBR_PARAM_KEEP_EXTERIOR is set. The
+   cbr_mesh_get_tets and the point getters drop unless
+   CBR_PARAM_KEEP_EXTERIOR is set. The
    paper's Table I counts the points inside the domain. */
 #define CBR_STAT_STEINER_INSIDE 12
 /* Keys 13-19 are reserved for recovery. After cbr_mesh_refine (0 before),
@@ -309,7 +320,8 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
    triangle then lies away from the convex hull, where nearly planar faces
    of turned CAD parts leave no room; this recovers most first failures);
    if that succeeds, the corners are the first Steiner points (ids right
-   after the caller's points), in the exterior. If it fails too, recovery
+   after the caller's points, with CBR_PARAM_KEEP_EXTERIOR set), in the
+   exterior. If it fails too, recovery
    starts again from the Delaunay mesh with other budgets for the deepest
    flip round (10,000, then 30,000 edge removals a face; only with
    CBR_PARAM_RECOVERY_DEEP_FLIPS at 1): the flips decide where the later
@@ -332,8 +344,9 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
 CBR_API int cbr_mesh_recover_faces(cbr_mesh *mesh, int64_t count, const int64_t *tris, const int32_t *labels);
 
 /* Number of Steiner points (points added by recovery, all off the
-   surface; after cbr_mesh_refine, those it kept); -1 for a NULL mesh.
-   Their ids follow the input points'. */
+   surface; after cbr_mesh_refine, those it kept) that the getters return
+   (see CBR_PARAM_KEEP_EXTERIOR); -1 for a NULL mesh. Their ids follow the
+   input points'. */
 CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh *mesh);
 
 /* Copies the ids of the Steiner points (cbr_mesh_steiner_count of them, in
@@ -364,7 +377,12 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
    0) is not refined; regions keep their numbers. Size bound met on
    success: every edge of a tetrahedron of a bounded region that is not an
    input edge is at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing
-   field at its ends. New points get the next ids, after the points
+   field at its ends, or, from an input point u into the interior, at
+   most 1.25 times the largest circumradius of the input triangles at u
+   (no point may be added on the surface, so no tetrahedron on a large
+   input triangle can be small; a domain that lies within that reach of
+   its surface can thus keep few points, see README "Known
+   limitations"). New points get the next ids, after the points
    inserted so far (and recovery's Steiner points); the Steiner points of
    recovery may move (smoothing, relocation) or, where one keeps an
    element with q < 0.1, be suppressed: cbr_mesh_steiner_count and

@@ -2,9 +2,9 @@
 // from a cbr_mesh through the public C API: points, the tetrahedra
 // returned (bounded regions, or all with CBR_PARAM_KEEP_EXTERIOR) and their
 // regions, the input triangles with their labels, which points are Steiner.
-// The points after the input's that no tetrahedron returned uses (the
-// exterior's Steiner points, unless it is kept) are left out; the others
-// keep their order, the input's their ids.
+// The points are those the library returns: without the exterior, the
+// input's with their ids and the added points that a returned tetrahedron
+// uses, in their order (CBR_PARAM_KEEP_EXTERIOR).
 #pragma once
 
 #include <cbr/cbr.h>
