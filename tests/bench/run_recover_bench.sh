@@ -23,6 +23,9 @@
 #   --repeat N    run each tool N times on each surface, one run after the
 #                 other, and report the median wall time (default
 #                 $CBR_BENCH_REPEAT or 1; every run makes the same mesh)
+#   --threads N   pass --threads N to cbr (1: libcbr on one thread, as the
+#                 peers run; default: cbr's own, as many as the hardware
+#                 runs at once; the meshes are the same either way)
 #   --keep        keep the outputs (the work directory is printed)
 #
 # Build directory of libcbr and `cbr` (Release): $CBR_BENCH_BUILD (default
@@ -45,6 +48,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 extra=${CBR_BENCH_CMAKE_ARGS:-}
 limit=${CBR_BENCH_TIMEOUT:-300}
 repeat=${CBR_BENCH_REPEAT:-1}
+thread_args=()
 data=
 csv=
 verify=0
@@ -61,6 +65,8 @@ while [ $# -gt 0 ]; do
         --csv) [ $# -ge 2 ] || usage; csv=$2; shift 2 ;;
         --csv=*) csv=${1#--csv=}; shift ;;
         --verify) verify=1; shift ;;
+        --threads) [ $# -ge 2 ] || usage; thread_args=(--threads "$2"); shift 2 ;;
+        --threads=*) thread_args=(--threads "${1#--threads=}"); shift ;;
         --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
         --timeout=*) limit=${1#--timeout=}; shift ;;
         --repeat) [ $# -ge 2 ] || usage; repeat=$2; shift 2 ;;
@@ -181,7 +187,7 @@ EOF
 
     # libcbr
     out=$dir/cbr.out err=$dir/cbr.err
-    timed_runs "$repeat" "$cbr" recover "$f" -o "$dir/cbr.mesh" --json "$dir/cbr.json"
+    timed_runs "$repeat" "$cbr" recover "$f" -o "$dir/cbr.mesh" --json "$dir/cbr.json" "${thread_args[@]}"
     cbr_exit=$rc
     case $rc in
         0) cbr_status=ok ;;

@@ -28,6 +28,9 @@
 #   --repeat N    run each tool N times on each surface, one run after the
 #                 other, and report the median wall time (default
 #                 $CBR_BENCH_REPEAT or 1; every run makes the same mesh)
+#   --threads N   pass --threads N to cbr (1: libcbr on one thread, as the
+#                 peers run; default: cbr's own, as many as the hardware
+#                 runs at once; the meshes are the same either way)
 #   --gmsh        also run gmsh (`gmsh -3`, Mesh.Algorithm3D = 1: Delaunay;
 #                 the surface given as one discrete surface bounding one
 #                 volume, off_to_medit.py) and print a second table, cbr
@@ -56,6 +59,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 extra=${CBR_BENCH_CMAKE_ARGS:-}
 limit=${CBR_BENCH_TIMEOUT:-300}
 repeat=${CBR_BENCH_REPEAT:-1}
+thread_args=()
 data=
 csv=
 keep=0
@@ -77,6 +81,8 @@ while [ $# -gt 0 ]; do
         --size=*) size=${1#--size=}; shift ;;
         --growth) [ $# -ge 2 ] || usage; growth=$2; shift 2 ;;
         --growth=*) growth=${1#--growth=}; shift ;;
+        --threads) [ $# -ge 2 ] || usage; thread_args=(--threads "$2"); shift 2 ;;
+        --threads=*) thread_args=(--threads "${1#--threads=}"); shift ;;
         --timeout) [ $# -ge 2 ] || usage; limit=$2; shift 2 ;;
         --timeout=*) limit=${1#--timeout=}; shift ;;
         --repeat) [ $# -ge 2 ] || usage; repeat=$2; shift 2 ;;
@@ -145,7 +151,7 @@ for f in "${files[@]}"; do
     mkdir -p "$dir/tetgen"
 
     out=$dir/cbr.out err=$dir/cbr.err
-    timed_runs "$repeat" "$cbr" mesh -q "$f" -o "$dir/cbr.node" --json "$dir/cbr.json" "${size_args[@]}"
+    timed_runs "$repeat" "$cbr" mesh -q "$f" -o "$dir/cbr.node" --json "$dir/cbr.json" "${size_args[@]}" "${thread_args[@]}"
     case $rc in
         0) cbr_status=ok ;;
         3) cbr_status=FAILED ;;
