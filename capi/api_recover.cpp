@@ -197,27 +197,14 @@ cbr::recover::RecoveryResult recover_in_attempts(cbr_mesh& mesh, const cbr::reco
     return first;
 }
 
-// CBR_STAT_STEINER_INSIDE: the distinct Steiner points that some tetrahedron
-// of a bounded region (region > 0) uses; 0 before recovery.
+// CBR_STAT_STEINER_INSIDE: the Steiner points that some tetrahedron of a
+// bounded region (region > 0) uses (InteriorPoints numbers them); 0
+// before recovery.
 std::size_t steiner_inside(const cbr_mesh& h) {
-    const cbr::capi::RecoveryState& r = h.recovery;
-    if (!r.done || r.steiner.empty()) return 0;
-    const cbr::mesh::TetMesh& m = h.delaunay.mesh();
-    const cbr::mesh::VertexId top = *std::max_element(r.steiner.begin(), r.steiner.end());
-    std::vector<char> mark(static_cast<std::size_t>(top) + 1, 0);  // 1: Steiner, 2: counted
-    for (cbr::mesh::VertexId v : r.steiner) mark[v] = 1;
-    std::size_t n = 0;
-    for (cbr::mesh::TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t) || m.is_ghost(t) || r.regions.of_tet[t] <= 0) continue;
-        for (int i = 0; i < 4; ++i) {
-            const cbr::mesh::VertexId v = m.vertex(t, i);
-            if (v <= top && mark[v] == 1) {
-                mark[v] = 2;
-                ++n;
-            }
-        }
-    }
-    return n;
+    const std::vector<cbr::mesh::VertexId>& steiner = h.recovery.steiner;
+    return static_cast<std::size_t>(std::count_if(steiner.begin(), steiner.end(), [&](cbr::mesh::VertexId v) {
+        return cbr::capi::interior_id(h, v) >= 0;
+    }));
 }
 
 }  // namespace

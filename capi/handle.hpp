@@ -161,14 +161,19 @@ InteriorPoints interior_points(const cbr_mesh& h, std::size_t caller, const std:
 // CBR_PARAM_KEEP_EXTERIOR is set).
 inline bool drops_exterior(const cbr_mesh& h) { return h.recovery.done && !h.keep_exterior; }
 
-// The id (0-based) the getters give internal vertex v, or -1 when they
-// leave it out.
-inline std::int64_t returned_id(const cbr_mesh& h, cbr::mesh::VertexId v) {
+// After recovery: the id (0-based) of internal vertex v in the numbering
+// of InteriorPoints, or -1 when only the exterior uses it.
+inline std::int64_t interior_id(const cbr_mesh& h, cbr::mesh::VertexId v) {
     const std::int64_t id = h.delaunay.external_id(v);
-    if (!drops_exterior(h)) return id;
     const InteriorPoints& p = h.recovery.interior;
     const auto caller = static_cast<std::int64_t>(p.caller);
     return id < caller ? id : p.added[static_cast<std::size_t>(id - caller)];
+}
+
+// The id (0-based) the getters give internal vertex v, or -1 when they
+// leave it out.
+inline std::int64_t returned_id(const cbr_mesh& h, cbr::mesh::VertexId v) {
+    return drops_exterior(h) ? interior_id(h, v) : std::int64_t{h.delaunay.external_id(v)};
 }
 
 // How many points the getters return.

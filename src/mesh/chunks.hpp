@@ -1,5 +1,5 @@
 // Whole-mesh passes that only read (the validity check, the lookup of the
-// input triangles among the mesh's faces) cut into contiguous chunks, one
+// input triangles among the mesh's faces, Table II) cut into contiguous chunks, one
 // thread each (CBR_PARAM_THREADS). Each chunk fills its own result and the
 // caller merges them in chunk order, so the answer is the one pass's, bit
 // for bit, whatever the number of threads.
