@@ -287,11 +287,11 @@ CBR_API int64_t cbr_mesh_steiner_count(const cbr_mesh* mesh) {
 CBR_API int cbr_mesh_steiner_points(const cbr_mesh* mesh, int64_t* ids_out) {
     return guarded(mesh, "cbr_mesh_steiner_points", [&] {
         require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
-        if (cbr_mesh_steiner_count(mesh) == 0) return CBR_OK;
-        require(ids_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "ids_out is NULL");
         for (cbr::mesh::VertexId v : mesh->recovery.steiner) {
             const std::int64_t id = cbr::capi::returned_id(*mesh, v);
-            if (id >= 0) *ids_out++ = id + mesh->index_base;
+            if (id < 0) continue;  // the exterior's, left out
+            require(ids_out != nullptr, CBR_ERR_INVALID_ARGUMENT, "ids_out is NULL");
+            *ids_out++ = id + mesh->index_base;
         }
         return CBR_OK;
     });

@@ -191,6 +191,7 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
     SUBCASE("with the exterior: the corners are ids n .. n + 7, outside the box, in no bounded tetrahedron") {
         REQUIRE(cbr_mesh_set_param(h.m, CBR_PARAM_KEEP_EXTERIOR, 1) == CBR_OK);
         const std::int64_t steiner_count = cbr_mesh_steiner_count(h.m);
+        CHECK(cbr_mesh_steiner_points(h.m, nullptr) == CBR_ERR_INVALID_ARGUMENT);  // the corners at least
         CHECK(cbr_mesh_point_count(h.m) == n + steiner_count);
         CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) == static_cast<double>(steiner_count));
         std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
@@ -217,6 +218,8 @@ TEST_CASE("a surface that its own Delaunay mesh defeats is recovered inside an e
         CHECK(np == n + steiner_count);
         CHECK(stat(h.m, CBR_STAT_STEINER_INSIDE) == static_cast<double>(steiner_count));
         CHECK(stat(h.m, CBR_STAT_STEINER_REMAINING) >= static_cast<double>(steiner_count + 8));
+        // Nothing to write needs no array; something to write does.
+        CHECK(cbr_mesh_steiner_points(h.m, nullptr) == (steiner_count == 0 ? CBR_OK : CBR_ERR_INVALID_ARGUMENT));
         std::vector<std::int64_t> ids(static_cast<std::size_t>(steiner_count));
         REQUIRE(cbr_mesh_steiner_points(h.m, ids.data()) == CBR_OK);
         std::vector<std::int64_t> expected(ids.size());
