@@ -193,6 +193,26 @@ run_local_outputs() {
     expect 0 "" recover --help && report_has "--no-retries     report a failure of the first attempt at once"
     expect 0 "" mesh --help && report_has "--no-retries     no further recovery attempts after a failure"
     expect 0 "" recover --no-retries "$tmp/cube.off" -o "$tmp/cube-once.mesh" && report_has "Table I"
+    # --triangulate: a face with more than 3 corners is a parse error whose
+    # message names the option; with it, recover and mesh take the fan of
+    # triangles test_io reads (the pyramid's quad base from its first
+    # corner), and the written mesh holds exactly those triangles.
+    expect 0 "" recover --help && report_has "--triangulate    split faces with more than 3 corners"
+    expect 0 "" mesh --help && report_has "--triangulate    split faces with more than 3 corners"
+    expect 2 "pyramid\.obj:17: face 0: has 4 corners: only triangles are accepted \(--triangulate splits" \
+        recover "$io_data/pyramid.obj" -o "$tmp/pyramid.mesh"
+    expect 2 "has 4 corners: only triangles are accepted \(--triangulate" mesh "$io_data/pyramid.obj" -o "$tmp/pyramid.mesh"
+    expect 0 "" recover --triangulate "$io_data/pyramid.obj" -o "$tmp/pyramid.mesh" &&
+        report_has "pyramid\.mesh: 5 points, [0-9]+ tetrahedra$"
+    if [ -n "$mesh_info" ]; then
+        off pyramid-fan "0 0 0;1 0 0;1 1 0;0 1 0;0.5 0.5 0.7071067811865476" "0 3 2;0 2 1;0 1 4;1 2 4;2 3 4;3 0 4"
+        checks=$((checks + 1))
+        "$mesh_info" "$tmp/pyramid.mesh" "$tmp/pyramid-fan.off" > "$tmp/info" 2>&1 &&
+            grep -q "^points 5 tetrahedra [0-9]* triangles 6 regions 1 steiner 0$" "$tmp/info" &&
+            grep -q "^surface identical$" "$tmp/info" ||
+            fail "pyramid.mesh (--triangulate) read back: $(cat "$tmp/info")"
+    fi
+    expect 0 "" mesh -q --triangulate "$io_data/pyramid.obj" -o "$tmp/pyramid-mesh.mesh" --size 0.2
     # --threads N (CBR_PARAM_THREADS; test_threads and test_refine check the
     # library's passes): in the help, refused out of range, and the same
     # files and tables with 1 and 2 (with 2, the .mesh is written while

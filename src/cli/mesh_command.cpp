@@ -11,7 +11,7 @@ namespace {
 void print_help(std::FILE* out) {
     std::fprintf(out,
                  "usage: cbr mesh IN -o OUT [--size H] [--growth R] [--json FILE] [--keep-exterior] [--allow-open]\n"
-                 "       [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
+                 "       [--triangulate] [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
                  "\n"
                  "Tetrahedralizes the inside of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh): boundary recovery as in cbr recover (every triangle a face,\n"
@@ -36,6 +36,8 @@ void print_help(std::FILE* out) {
                  "                   refined)\n"
                  "  --allow-open     accept an open surface (it bounds no region: nothing is\n"
                  "                   refined)\n"
+                 "  --triangulate    split faces with more than 3 corners into triangle fans\n"
+                 "                   (as in cbr recover)\n"
                  "  --no-deep-flips  skip the deepest flip searches of recovery (as in cbr\n"
                  "                   recover)\n"
                  "  --no-retries     no further recovery attempts after a failure (as in\n"

@@ -11,7 +11,7 @@ namespace {
 void print_help(std::FILE* out) {
     std::fprintf(out,
                  "usage: cbr recover IN -o OUT [--json FILE] [--keep-exterior] [--allow-open]\n"
-                 "       [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
+                 "       [--triangulate] [--no-deep-flips] [--no-retries] [--threads N] [-q]\n"
                  "\n"
                  "Tetrahedralizes the points of the surface IN (OFF, OBJ, STL, PLY, .smesh,\n"
                  ".poly, .mesh) and recovers every one of its triangles as a face, without\n"
@@ -27,6 +27,11 @@ void print_help(std::FILE* out) {
                  "  --keep-exterior  also write the exterior tetrahedra (region 0)\n"
                  "  --allow-open     recover an open surface too (its faces are recovered,\n"
                  "                   but it bounds no region: use with --keep-exterior)\n"
+                 "  --triangulate    split faces with more than 3 corners into fans of\n"
+                 "                   triangles from their first corner (otherwise such a\n"
+                 "                   face is a parse error); a fan of a polygon that is not\n"
+                 "                   convex and planar can overlap, which the input checks\n"
+                 "                   then reject\n"
                  "  --no-deep-flips  skip the deepest flip searches: faster on surfaces whose\n"
                  "                   faces flips find hard, for more Steiner points\n"
                  "  --no-retries     report a failure of the first attempt at once, without\n"

@@ -29,6 +29,7 @@ struct VolumeArgs : OutputOptions {
     double growth = -1;  // mesh --growth R; < 0: not given (the library's default)
     bool keep_exterior = false;
     bool allow_open = false;
+    bool triangulate = false;  // --triangulate: faces with more than 3 corners as triangle fans
     bool deep_flips = true;
     bool retries = true;
     int threads = 0;  // --threads N; 0: as many as the hardware runs at once
@@ -81,6 +82,8 @@ int parse_args(int argc, char** argv, const VolumeCommand& command, VolumeArgs& 
             args.keep_exterior = true;
         } else if (a == "--allow-open") {
             args.allow_open = true;
+        } else if (a == "--triangulate") {
+            args.triangulate = true;
         } else if (a == "--no-deep-flips") {
             args.deep_flips = false;
         } else if (a == "--no-retries") {
@@ -116,7 +119,9 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
     RecoveryOutcome outcome;
     io::SurfaceMesh surface;
     steps.begin("reading", true);
-    const io::Status read = io::read_surface(args.input, surface);
+    io::ReadOptions read_options;
+    read_options.triangulate_polygons = args.triangulate;
+    const io::Status read = io::read_surface(args.input, surface, read_options);
     if (read.ok()) {
         RecoveryOptions options;
         options.input = args.input;

@@ -16,8 +16,8 @@ bool append_face(SurfaceMesh& mesh, const std::int64_t* ids, std::size_t n, std:
 
 std::string polygon_rejected(std::size_t corners) {
     return "has " + std::to_string(corners) +
-           " corners: polygons are not accepted unless triangulate_polygons is set "
-           "(fan triangulation)";
+           " corners: only triangles are accepted (--triangulate splits a polygon into a fan "
+           "of triangles)";
 }
 
 }  // namespace cbr::io::detail

@@ -19,8 +19,10 @@ namespace cbr::io::detail {
 bool append_face(SurfaceMesh& mesh, const std::int64_t* ids, std::size_t n, std::int32_t label,
                  bool triangulate);
 
-// "has 4 corners: polygons are not accepted unless triangulate_polygons is
-// set (fan triangulation)" -- the tail of the caller's message.
+// "has 4 corners: only triangles are accepted (--triangulate splits a
+// polygon into a fan of triangles)" -- the tail of the caller's message,
+// naming the option of every cbr command that reads a surface (the readers
+// serve the command alone; ReadOptions::triangulate_polygons is that option).
 std::string polygon_rejected(std::size_t corners);
 
 }  // namespace cbr::io::detail
