@@ -152,7 +152,13 @@ run_local_outputs() {
         'd["table_two"]["tetrahedra"] == d["mesh"]["tetrahedra"] >= 5' \
         '0.1 < d["table_two"]["quality_min"] <= d["table_two"]["quality_average"] <= 1' \
         '0 < d["table_two"]["dihedral_min_degrees"] <= 70.53 <= d["table_two"]["dihedral_max_degrees"] < 180' \
-        'd["table_two"]["percent_below_0_1"] == 0'
+        'd["table_two"]["percent_below_0_1"] == 0' \
+        'd["options"] == {"keep_exterior": False, "allow_open": False, "triangulate": False, "deep_flips": True, "retries": True, "threads": 0, "size": None, "growth": None}'
+    # "options": what the command line asked for, every flag set here.
+    expect 0 "" mesh -q "$tmp/cube.off" -o "$tmp/cube-flags.mesh" --json "$tmp/cube-flags.json" --keep-exterior \
+        --allow-open --triangulate --no-deep-flips --no-retries --threads 1 --size 0.5 --growth 0.25
+    json_has "$tmp/cube-flags.json" 'd["status"] == "ok"' \
+        'd["options"] == {"keep_exterior": True, "allow_open": True, "triangulate": True, "deep_flips": False, "retries": False, "threads": 1, "size": 0.5, "growth": 0.25}'
 
     # Round trips through the project's own Medit reader: the surface's
     # points bit for bit, its triangles, the counts printed.
@@ -175,7 +181,8 @@ run_local_outputs() {
         'd["output"] is None and "could not recover" in d["error"]' \
         'd["table_one"]["missing_faces"] > 0 and d["table_two"] is None and d["mesh"] is None'
     expect 4 "no such file" recover "$tmp/missing.off" -o "$tmp/missing.mesh" --json "$tmp/missing.json"
-    json_has "$tmp/missing.json" 'd["status"] == "io_error" and d["exit_code"] == 4 and d["table_one"] is None'
+    json_has "$tmp/missing.json" 'd["status"] == "io_error" and d["exit_code"] == 4 and d["table_one"] is None' \
+        'd["options"]["threads"] == 0 and d["options"]["size"] is None'
     expect 4 "missing-dir/r.json: cannot create" recover "$tmp/tet.off" -o "$tmp/t2.mesh" --json "$tmp/missing-dir/r.json"
     # A file name with a quote, a tab and a byte that is not UTF-8: still
     # valid JSON (the byte becomes U+FFFD).

@@ -56,6 +56,31 @@ void table_two(JsonWriter& j, const QualityReport& q) {
     j.end_object();
 }
 
+// "options": what the command line asked for (run_report.hpp).
+void options(JsonWriter& j, const RunDescription& run) {
+    const RecoveryOptions& o = run.options;
+    j.key("options").begin_object();
+    j.key("keep_exterior").boolean(o.keep_exterior);
+    j.key("allow_open").boolean(o.allow_open);
+    j.key("triangulate").boolean(run.triangulate);
+    j.key("deep_flips").boolean(o.deep_flips);
+    j.key("retries").boolean(o.retries);
+    j.key("threads").integer(o.threads);
+    j.key("size");
+    if (o.size > 0) {
+        j.number(o.size);
+    } else {
+        j.null();
+    }
+    j.key("growth");
+    if (o.growth >= 0) {
+        j.number(o.growth);
+    } else {
+        j.null();
+    }
+    j.end_object();
+}
+
 }  // namespace
 
 std::string run_report_json(const RunDescription& run, const RecoveryOutcome& outcome) {
@@ -70,6 +95,7 @@ std::string run_report_json(const RunDescription& run, const RecoveryOutcome& ou
     } else {
         j.null();
     }
+    options(j, run);
     j.key("status").string(exit_status_name(outcome.exit_code));
     j.key("exit_code").integer(outcome.exit_code);
     j.key("error");

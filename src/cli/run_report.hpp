@@ -7,6 +7,13 @@
 //     "command": "recover",
 //     "input": "in.off",
 //     "output": "out.mesh",            null when no mesh was written
+//     "options": {"keep_exterior": false, "allow_open": false,
+//                 "triangulate": false, "deep_flips": true, "retries": true,
+//                 "threads": 0, "size": null, "growth": null},
+//                                      as given on the command line (or the
+//                                      defaults): threads 0 = the hardware's;
+//                                      size and growth null unless cbr mesh
+//                                      was given --size / --growth
 //     "status": "ok",                  ok | invalid_input | recovery_failed |
 //                                      io_error | internal_error
 //     "exit_code": 0,
@@ -47,6 +54,9 @@ struct RunDescription {
     std::string command;  // "recover", "demo"
     std::string input;
     std::string output;   // asked for; empty: none
+    // How the run was asked for, for "options" (output and input are above).
+    RecoveryOptions options;
+    bool triangulate = false;  // --triangulate (a reading option)
 };
 
 std::string run_report_json(const RunDescription& run, const RecoveryOutcome& outcome);

@@ -115,7 +115,18 @@ void print_refine(std::FILE* out, const RefineSummary& r) {
 
 int run(const VolumeCommand& command, const VolumeArgs& args) {
     Steps steps(command.name, args.quiet);
-    const RunDescription run{command.name, args.input, args.output};
+    RecoveryOptions options;
+    options.input = args.input;
+    options.output = args.output;
+    options.keep_exterior = args.keep_exterior;
+    options.allow_open = args.allow_open;
+    options.deep_flips = args.deep_flips;
+    options.retries = args.retries;
+    options.threads = args.threads;
+    options.refine = command.refine;
+    options.size = args.size;
+    options.growth = args.growth;
+    const RunDescription run{command.name, args.input, args.output, options, args.triangulate};
     RecoveryOutcome outcome;
     io::SurfaceMesh surface;
     steps.begin("reading", true);
@@ -123,17 +134,6 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
     read_options.triangulate_polygons = args.triangulate;
     const io::Status read = io::read_surface(args.input, surface, read_options);
     if (read.ok()) {
-        RecoveryOptions options;
-        options.input = args.input;
-        options.output = args.output;
-        options.keep_exterior = args.keep_exterior;
-        options.allow_open = args.allow_open;
-        options.deep_flips = args.deep_flips;
-        options.retries = args.retries;
-        options.threads = args.threads;
-        options.refine = command.refine;
-        options.size = args.size;
-        options.growth = args.growth;
         outcome = run_recovery(surface, options, steps);
     } else {
         outcome.exit_code = exit_code_for(read.kind);
