@@ -92,7 +92,7 @@ int demo(const DemoArgs& args) {
         if (outcome.has_table_one) print_table_one(stdout, outcome.table_one);
         if (outcome.has_quality) print_table_two(stdout, outcome.quality);
     }
-    return finish_run({"demo", kInputName, args.output, options}, args.json, outcome, steps);
+    return finish_run({"demo", options}, args.json, outcome, steps);
 }
 
 }  // namespace

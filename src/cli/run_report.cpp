@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <new>
 
 #include "cli/exit_codes.hpp"
@@ -66,18 +67,10 @@ void options(JsonWriter& j, const RunDescription& run) {
     j.key("deep_flips").boolean(o.deep_flips);
     j.key("retries").boolean(o.retries);
     j.key("threads").integer(o.threads);
-    j.key("size");
-    if (o.size > 0) {
-        j.number(o.size);
-    } else {
-        j.null();
-    }
-    j.key("growth");
-    if (o.growth >= 0) {
-        j.number(o.growth);
-    } else {
-        j.null();
-    }
+    // Not given: NaN, which number() writes as null.
+    constexpr double kNotGiven = std::numeric_limits<double>::quiet_NaN();
+    j.key("size").number(o.size > 0 ? o.size : kNotGiven);
+    j.key("growth").number(o.growth >= 0 ? o.growth : kNotGiven);
     j.end_object();
 }
 
@@ -88,10 +81,10 @@ std::string run_report_json(const RunDescription& run, const RecoveryOutcome& ou
     j.begin_object();
     j.key("cbr_version").string(cbr_version());
     j.key("command").string(run.command);
-    j.key("input").string(run.input);
+    j.key("input").string(run.options.input);
     j.key("output");
     if (outcome.written) {
-        j.string(run.output);
+        j.string(run.options.output);
     } else {
         j.null();
     }

@@ -52,9 +52,8 @@ namespace cbr::cli {
 
 struct RunDescription {
     std::string command;  // "recover", "demo"
-    std::string input;
-    std::string output;   // asked for; empty: none
-    // How the run was asked for, for "options" (output and input are above).
+    // How the run was asked for: its input, its output (empty: none) and
+    // the options of "options".
     RecoveryOptions options;
     bool triangulate = false;  // --triangulate (a reading option)
 };

@@ -126,7 +126,7 @@ int run(const VolumeCommand& command, const VolumeArgs& args) {
     options.refine = command.refine;
     options.size = args.size;
     options.growth = args.growth;
-    const RunDescription run{command.name, args.input, args.output, options, args.triangulate};
+    const RunDescription run{command.name, options, args.triangulate};
     RecoveryOutcome outcome;
     io::SurfaceMesh surface;
     steps.begin("reading", true);
