@@ -3,10 +3,15 @@
 // under the perturbation, which proves the mesh Delaunay).
 #include <doctest/doctest.h>
 
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <numeric>
+#include <string>
 
 #include "delaunay/delaunay.hpp"
 #include "delaunay/spatial_sort.hpp"
+#include "mesh/large_array.hpp"
 #include "mesh/mesh_check.hpp"
 #include "test_util.hpp"
 
@@ -308,4 +313,60 @@ TEST_CASE("check_mesh reports each kind of corruption") {
         const cbr::mesh::CheckReport r = cbr::mesh::check_mesh(m);
         CHECK(!r.ok());
     }
+}
+
+namespace {
+
+// Whether THP can be asked for here (Linux with THP not "never").
+bool huge_pages_offered() {
+    std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string line;
+    return std::getline(f, line) && line.find("[never]") == std::string::npos;
+}
+
+// The VmFlags of the mapping holding p (/proc/self/smaps), "" if none.
+std::string mapping_flags(const void* p) {
+    std::ifstream f("/proc/self/smaps");
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    bool inside = false;
+    for (std::string line; std::getline(f, line);) {
+        unsigned long long lo = 0, hi = 0;
+        if (std::sscanf(line.c_str(), "%llx-%llx ", &lo, &hi) == 2) inside = lo <= at && at < hi;
+        else if (inside && line.rfind("VmFlags:", 0) == 0) return line;
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("large arrays: huge-page aligned and advised from 2 MiB, contents kept as they grow") {
+    using cbr::mesh::LargeArray;
+    constexpr std::size_t kHuge = std::size_t{2} << 20;
+    // Below 2 MiB: operator new, aligned for the type (a tetrahedron
+    // record is 32-byte aligned).
+    struct alignas(32) Record {
+        std::uint32_t v[8];
+    };
+    LargeArray<Record> small(100);
+    CHECK(reinterpret_cast<std::uintptr_t>(small.data()) % 32 == 0);
+    // Grown one entry at a time across 2 MiB: every value kept.
+    LargeArray<std::uint32_t> grown;
+    for (std::uint32_t i = 0; i < (3 << 20) / 4; ++i) grown.push_back(i * 7u);
+    bool kept = true;
+    for (std::uint32_t i = 0; i < grown.size(); ++i) kept = kept && grown[i] == i * 7u;
+    CHECK(kept);
+    CHECK(reinterpret_cast<std::uintptr_t>(grown.data()) % kHuge == 0);
+    // A copy is a large array too.
+    const LargeArray<std::uint32_t> copy = grown;
+    CHECK(copy == grown);
+    CHECK(reinterpret_cast<std::uintptr_t>(copy.data()) % kHuge == 0);
+#if defined(__linux__)
+    if (!huge_pages_offered()) {
+        MESSAGE("transparent huge pages not offered here: the advice is not checked");
+        return;
+    }
+    const std::string flags = mapping_flags(copy.data());
+    INFO("VmFlags: " << flags);
+    CHECK(flags.find(" hg") != std::string::npos);  // MADV_HUGEPAGE
+#endif
 }

@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mesh/large_array.hpp"
+
 namespace cbr::mesh {
 
 class SlotMarks {
@@ -44,7 +46,7 @@ private:
     static constexpr int kMarkBits = 8;
     static constexpr std::uint32_t kRoundLimit = std::uint32_t{1} << (32 - kMarkBits);
 
-    std::vector<std::uint32_t> word_;
+    LargeArray<std::uint32_t> word_;
     std::uint32_t round_ = 0;  // 0: no round started (no word is ever "current")
 };
 

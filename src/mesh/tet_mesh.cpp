@@ -111,8 +111,8 @@ void TetMesh::reorder_tets(const std::vector<TetId>& order) {
     assert(order.size() == live_count());
     std::vector<TetId> new_id(slot_count(), kNoTet);
     for (std::size_t i = 0; i < order.size(); ++i) new_id[order[i]] = static_cast<TetId>(i);
-    std::vector<TetRecord> tets(order.size());
-    std::vector<std::uint8_t> flags(order.size());
+    LargeArray<TetRecord> tets(order.size());
+    LargeArray<std::uint8_t> flags(order.size());
     for (std::size_t i = 0; i < order.size(); ++i) {
         TetRecord r = tets_[order[i]];
         for (FacetRef& n : r.n) n = make_facet(new_id[facet_tet(n)], facet_face(n));

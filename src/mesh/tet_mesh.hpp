@@ -36,6 +36,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mesh/large_array.hpp"
+
 namespace cbr::mesh {
 
 using VertexId = std::uint32_t;
@@ -173,13 +175,13 @@ private:
     void save_slot(TetId t);
 
     std::vector<double> coords_;
-    std::vector<TetRecord> tets_;
-    std::vector<std::uint8_t> flags_;
+    LargeArray<TetRecord> tets_;
+    LargeArray<std::uint8_t> flags_;
     std::vector<TetId> free_;
     bool journal_open_ = false;
     struct Journal {
         std::uint32_t epoch = 0;            // one per open_journal()
-        std::vector<std::uint32_t> stamp;   // per slot: the epoch it was saved in
+        LargeArray<std::uint32_t> stamp;    // per slot: the epoch it was saved in
         std::vector<SavedSlot> saved;
         std::size_t slot_count = 0;         // slots when opened; later ones are dropped
         std::size_t free_low = 0;           // the free list's lowest size since
