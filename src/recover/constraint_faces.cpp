@@ -8,10 +8,12 @@
 namespace cbr::recover {
 namespace {
 
+// The three ids in increasing order. Called for every face of the mesh
+// (facets_of_mesh: igea's 1.7 million), so three comparisons instead of a
+// call of std::sort.
 Triangle sorted(mesh::VertexId a, mesh::VertexId b, mesh::VertexId c) {
-    Triangle t = {a, b, c};
-    std::sort(t.begin(), t.end());
-    return t;
+    const mesh::VertexId lo = std::min(a, b), hi = std::max(a, b);
+    return {std::min(lo, c), std::max(lo, std::min(hi, c)), std::max(hi, c)};
 }
 
 // Files the triangles of `tris` that `keep` accepts under their smallest id
