@@ -11,6 +11,7 @@
 
 #include "delaunay/delaunay.hpp"
 #include "delaunay/spatial_sort.hpp"
+#include "mesh/huge_pages.hpp"
 #include "mesh/large_array.hpp"
 #include "mesh/mesh_check.hpp"
 #include "test_util.hpp"
@@ -339,7 +340,7 @@ std::string mapping_flags(const void* p) {
 
 }  // namespace
 
-TEST_CASE("large arrays: huge-page aligned and advised from 2 MiB, contents kept as they grow") {
+TEST_CASE("large arrays: huge-page aligned and advised from 2 MiB, contents kept as they grow; reserve_huge advises") {
     using cbr::mesh::LargeArray;
     constexpr std::size_t kHuge = std::size_t{2} << 20;
     // Below 2 MiB: operator new, aligned for the type (a tetrahedron
@@ -368,5 +369,14 @@ TEST_CASE("large arrays: huge-page aligned and advised from 2 MiB, contents kept
     const std::string flags = mapping_flags(copy.data());
     INFO("VmFlags: " << flags);
     CHECK(flags.find(" hg") != std::string::npos);  // MADV_HUGEPAGE
+    // A plain vector reserved with reserve_huge: the whole huge pages
+    // inside its storage are advised.
+    std::vector<double> plain;
+    cbr::mesh::reserve_huge(plain, std::size_t{1} << 20);  // 8 MiB
+    REQUIRE(plain.capacity() >= std::size_t{1} << 20);
+    const auto inside = (reinterpret_cast<std::uintptr_t>(plain.data()) + kHuge) / kHuge * kHuge;
+    const std::string plain_flags = mapping_flags(reinterpret_cast<const void*>(inside));
+    INFO("VmFlags: " << plain_flags);
+    CHECK(plain_flags.find(" hg") != std::string::npos);
 #endif
 }

@@ -2,10 +2,6 @@
 
 #include <cstdlib>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 namespace cbr::mesh::detail {
 
 void* allocate_huge(std::size_t bytes) {
@@ -13,11 +9,7 @@ void* allocate_huge(std::size_t bytes) {
     if (rounded < bytes) throw std::bad_alloc();
     void* p = std::aligned_alloc(kHugePageBytes, rounded);
     if (p == nullptr) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-    // Advice only: where it is refused (THP "never", an old kernel) the
-    // pages are ordinary ones.
-    (void)::madvise(p, rounded, MADV_HUGEPAGE);
-#endif
+    advise_huge_pages(p, rounded);
     return p;
 }
 
