@@ -37,7 +37,7 @@ inline bool live_finite(const mesh::TetMesh& m, mesh::TetId t) { return !m.is_fr
 struct SlotSnapshot {
     std::vector<std::array<std::uint32_t, 9>> rows;
     std::size_t free_count = 0;
-    std::vector<double> coords;
+    mesh::LargeArray<double> coords;
     explicit SlotSnapshot(const mesh::TetMesh& m) : free_count(m.free_count()), coords(m.coordinates()) {
         for (mesh::TetId t = 0; t < m.slot_count(); ++t)
             rows.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3), m.neighbor(t, 0),

@@ -976,7 +976,7 @@ TEST_CASE("recover_faces: Schonhardt prism, stack and rotated variants") {
         Case c;
         build(c, v.p.xyz, v.p.tris);
         TetMesh& m = c.m();
-        const std::vector<double> input(m.coordinates());
+        const std::vector<double> input(m.coordinates().begin(), m.coordinates().end());
         cbr::recover::RecoveryStats stats;
         const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
         REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
@@ -1238,7 +1238,7 @@ cbr::recover::RecoveryStats recover_checked(const cbr::test::OffSurface& s,
                                             const cbr::recover::RecoveryOptions& options = {}) {
     Case c;
     build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates());
+    const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
     cbr::recover::RecoveryStats stats;
     const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, options);
     REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
@@ -1406,7 +1406,7 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     for (const int budget : cbr::recover::kRetryFlipBudgets) {
         Case c;
         build(c, s.xyz, s.tris);
-        const std::vector<double> input(c.m().coordinates());
+        const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
         cbr::recover::RecoveryOptions other = in_ring_order();
         other.deepest_flip_budget = budget;
         cbr::recover::RecoveryStats stats;
@@ -1456,7 +1456,7 @@ TEST_CASE("recover_faces: a face-interior crossing rounded behind its shell is t
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-200-fan-caps-radius30-h1-r20.off", s));
     Case c;
     build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates());
+    const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
     cbr::recover::RecoveryStats stats;
     const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, in_ring_order());
     REQUIRE_MESSAGE(r.ok, r.why);

@@ -105,7 +105,7 @@ Snapshot snapshot(const TetMesh& m) {
         for (int i = 0; i < 4; ++i) s.words.insert(s.words.end(), {m.vertex(t, i), m.neighbor(t, i)});
         s.words.push_back(m.flags(t));
     }
-    s.coords = m.coordinates();
+    s.coords.assign(m.coordinates().begin(), m.coordinates().end());
     s.free = m.free_count();
     return s;
 }

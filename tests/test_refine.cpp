@@ -183,7 +183,7 @@ Outcome refine_and_check(const Surface& s, const cbr::refine::RefineOptions& opt
     REQUIRE(rr.ok);
     const cbr::recover::RegionMap before = cbr::recover::classify_regions(m, faces);
     const auto vol_before = region_volumes(m, before.of_tet);
-    const std::vector<double> input_coords = m.coordinates();
+    const auto input_coords = m.coordinates();
     Outcome out;
     out.points_before = m.vertex_count();
     std::vector<double> h;
@@ -194,7 +194,7 @@ Outcome refine_and_check(const Surface& s, const cbr::refine::RefineOptions& opt
     // The Steiner points left keep ids right after the input points.
     for (VertexId v : steiner) CHECK((v >= n && v < n + steiner.size()));
     out.points_after = m.vertex_count();
-    out.coordinates = m.coordinates();
+    out.coordinates.assign(m.coordinates().begin(), m.coordinates().end());
     for (TetId t = 0; t < m.slot_count(); ++t)
         if (!m.is_free(t)) out.tets.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
     REQUIRE(h.size() == m.vertex_count());

@@ -546,7 +546,7 @@ TEST_CASE("Schönhardt's prism keeps its Steiner point, mesh unchanged") {
     CHECK(mark_present_faces(p.m, cf).empty());
     CHECK(marked_faces(p.m).size() == 8);
     const std::set<Tet> before = tet_keys(p.m);
-    const std::vector<double> coords = p.m.coordinates();
+    const auto coords = p.m.coordinates();
     for (const bool contraction : {true, false})
         for (const bool flips : {true, false}) {
             SuppressOptions opt;
@@ -614,7 +614,7 @@ TEST_CASE("suppression refuses a hull vertex and a vertex of a constraint face")
     CHECK(tet_keys(d.m) == before);
     // Repositioning leaves both where they are.
     const ConstraintFaces cf = as_constraints(d.tris);
-    const std::vector<double> coords = d.m.coordinates();
+    const auto coords = d.m.coordinates();
     CHECK_FALSE(reposition_vertex(d.m, corner, any_tet_of(d.m, corner), cf));
     CHECK_FALSE(reposition_vertex(d.m, inner, any_tet_of(d.m, inner), cf));
     const RepositionStats st = reposition_steiner_points(d.m, {corner, inner}, cf);

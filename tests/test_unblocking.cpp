@@ -82,7 +82,7 @@ TEST_CASE("unblocking points: Schonhardt-type prisms, then flips") {
         const std::vector<std::size_t> missing = cbr::recover::mark_present_faces(m, *c.faces);
         const std::vector<std::size_t> after_flips = cbr::recover::recover_by_flips(m, *c.faces, missing);
         REQUIRE_FALSE(after_flips.empty());  // flips alone cannot: that is the point
-        const std::vector<double> input(m.coordinates());
+        const auto input = m.coordinates();
 
         std::vector<VertexId> steiner;
         const std::size_t made = cbr::recover::insert_unblocking_points(m, *c.faces, after_flips, steiner).kept;

@@ -70,7 +70,7 @@ public:
     // Appends points (3 doubles each); returns the id of the first.
     VertexId add_points(const double* xyz, std::size_t count);
     void truncate_vertices(std::size_t count);
-    const std::vector<double>& coordinates() const { return coords_; }
+    const LargeArray<double>& coordinates() const { return coords_; }
     // Moves vertex v to xyz (3 doubles): Steiner point repositioning (§6).
     // The caller keeps every tetrahedron incident to v positively oriented.
     void set_point(VertexId v, const double* xyz) {
@@ -174,7 +174,7 @@ private:
     }
     void save_slot(TetId t);
 
-    std::vector<double> coords_;
+    LargeArray<double> coords_;
     LargeArray<TetRecord> tets_;
     LargeArray<std::uint8_t> flags_;
     std::vector<TetId> free_;
