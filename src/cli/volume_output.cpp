@@ -24,7 +24,8 @@ int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::Volume
     if (status == CBR_OK) status = cbr_mesh_get_tet_regions(m, out.tet_regions.data());
     if (status == CBR_OK) status = cbr_mesh_steiner_points(m, steiner.data());
     if (status != CBR_OK) return status;
-    out.tris = surface.tris;
+    mesh::reserve_huge(out.tris, surface.tris.size());
+    out.tris.assign(surface.tris.begin(), surface.tris.end());
     out.tri_labels = surface.labels;
     out.tri_labels.resize(surface.tris.size() / 3, 0);
     out.is_steiner.assign(static_cast<std::size_t>(np), 0);

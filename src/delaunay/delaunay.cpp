@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "delaunay/spatial_sort.hpp"
+#include "mesh/huge_pages.hpp"
+#include "mesh/large_array.hpp"
 
 namespace cbr::delaunay {
 
@@ -71,10 +73,12 @@ InsertOutcome Delaunay::insert_points(const double* xyz, std::size_t count) {
 void Delaunay::store_batch(const double* xyz, std::size_t count) {
     const std::size_t before = mesh_.vertex_count();
     if (count > mesh::kMaxVertices - before) throw std::length_error("too many points");
-    std::vector<VertexId> order(count);
+    std::vector<VertexId> order;
+    mesh::reserve_huge(order, count);
+    order.resize(count);
     std::iota(order.begin(), order.end(), VertexId{0});
     brio_sort(xyz, order, 0xC0FFEEull + count);
-    std::vector<double> sorted(3 * count);
+    mesh::LargeArray<double> sorted(3 * count);
     for (std::size_t k = 0; k < count; ++k)
         for (int c = 0; c < 3; ++c) sorted[3 * k + c] = xyz[3 * std::size_t{order[k]} + c];
     external_of_.reserve(before + count);

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "mesh/large_array.hpp"
+
 namespace cbr::delaunay {
 namespace {
 
@@ -22,10 +24,12 @@ struct KeyedId {
     std::uint64_t key;
     mesh::VertexId id;
 };
+// One per point, shuffled and sorted in place (mesh/large_array.hpp).
+using KeyedIds = mesh::LargeArray<KeyedId>;
 
 // LSD radix sort on the low `key_bits` bits, 8 bits a pass; stable.
-void radix_sort(std::vector<KeyedId>& items, int key_bits) {
-    std::vector<KeyedId> buffer(items.size());
+void radix_sort(KeyedIds& items, int key_bits) {
+    KeyedIds buffer(items.size());
     for (int shift = 0; shift < key_bits; shift += 8) {
         std::array<std::size_t, 257> count{};
         for (const KeyedId& it : items) ++count[((it.key >> shift) & 0xFF) + 1];
@@ -83,9 +87,9 @@ namespace {
 
 // Hilbert keys of the points `ids`, over their common bounding box, in one
 // sequential pass over the ids.
-std::vector<KeyedId> hilbert_keys(const double* coords, const mesh::VertexId* first, const mesh::VertexId* last) {
+KeyedIds hilbert_keys(const double* coords, const mesh::VertexId* first, const mesh::VertexId* last) {
     const std::size_t n = static_cast<std::size_t>(last - first);
-    std::vector<KeyedId> items(n);
+    KeyedIds items(n);
     if (n == 0) return items;
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) lo[k] = hi[k] = coords[3 * std::size_t{*first} + k];
@@ -114,7 +118,7 @@ std::vector<KeyedId> hilbert_keys(const double* coords, const mesh::VertexId* fi
 std::vector<std::size_t> hilbert_order(const double* xyz, std::size_t n) {
     std::vector<mesh::VertexId> ids(n);
     for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<mesh::VertexId>(i);
-    std::vector<KeyedId> items = hilbert_keys(xyz, ids.data(), ids.data() + n);
+    KeyedIds items = hilbert_keys(xyz, ids.data(), ids.data() + n);
     if (items.size() > 1) radix_sort(items, 3 * kHilbertBits);  // stable: ties stay in index order
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = items[i].id;
@@ -125,7 +129,7 @@ void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint
     // Keys first, in the given order (sequential memory access), then the
     // shuffle and the rounds move (key, id) pairs only: no coordinate is
     // read in random order.
-    std::vector<KeyedId> items = hilbert_keys(coords, ids.data(), ids.data() + ids.size());
+    KeyedIds items = hilbert_keys(coords, ids.data(), ids.data() + ids.size());
     // Fisher-Yates with our own generator: the order is the same everywhere.
     std::uint64_t state = seed;
     for (std::size_t i = items.size(); i > 1; --i) {
@@ -135,7 +139,7 @@ void brio_sort(const double* coords, std::vector<mesh::VertexId>& ids, std::uint
     // Rounds: [0, r0) [r0, r1) ... each round kRoundDivisor times the last,
     // each sorted along the curve.
     std::size_t end = items.size();
-    std::vector<KeyedId> round;
+    KeyedIds round;
     while (end > 0) {
         const std::size_t begin = end > kSmallestRound ? end / kRoundDivisor : 0;
         round.assign(items.begin() + static_cast<std::ptrdiff_t>(begin), items.begin() + static_cast<std::ptrdiff_t>(end));
