@@ -156,7 +156,7 @@ QualityReport measure_quality(io::VolumeMesh& mesh) {
 
 QualityReport measure_quality(const io::VolumeMesh& mesh, std::vector<double>& qualities) {
     const std::size_t nt = mesh.num_tets();
-    mesh::reserve_huge(qualities, nt);
+    cbr::mesh::reserve_huge(qualities, nt);
     qualities.assign(nt, 0.0);
     Accumulator all;
     std::map<std::int32_t, Accumulator> by_region;

@@ -12,9 +12,9 @@ int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::Volume
     if (np < 0 || nt < 0 || ns < 0) return CBR_ERR_INTERNAL;
     // Filled here, then read by the writer and Table II: huge pages spare
     // igea's 27 MB of tetrahedra 7,000 page faults.
-    mesh::reserve_huge(out.xyz, 3 * static_cast<std::size_t>(np));
-    mesh::reserve_huge(out.tets, 4 * static_cast<std::size_t>(nt));
-    mesh::reserve_huge(out.tet_regions, static_cast<std::size_t>(nt));
+    cbr::mesh::reserve_huge(out.xyz, 3 * static_cast<std::size_t>(np));
+    cbr::mesh::reserve_huge(out.tets, 4 * static_cast<std::size_t>(nt));
+    cbr::mesh::reserve_huge(out.tet_regions, static_cast<std::size_t>(nt));
     out.xyz.resize(3 * static_cast<std::size_t>(np));
     out.tets.resize(4 * static_cast<std::size_t>(nt));
     out.tet_regions.resize(static_cast<std::size_t>(nt));
@@ -24,7 +24,7 @@ int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::Volume
     if (status == CBR_OK) status = cbr_mesh_get_tet_regions(m, out.tet_regions.data());
     if (status == CBR_OK) status = cbr_mesh_steiner_points(m, steiner.data());
     if (status != CBR_OK) return status;
-    mesh::reserve_huge(out.tris, surface.tris.size());
+    cbr::mesh::reserve_huge(out.tris, surface.tris.size());
     out.tris.assign(surface.tris.begin(), surface.tris.end());
     out.tri_labels = surface.labels;
     out.tri_labels.resize(surface.tris.size() / 3, 0);

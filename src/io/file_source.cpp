@@ -47,7 +47,7 @@ Status load_file(const std::string& path, std::string& data) {
     if (!f) return io_failure(path, errno);
 
     data.clear();
-    if (S_ISREG(st.st_mode) && st.st_size > 0) mesh::reserve_huge(data, static_cast<std::size_t>(st.st_size));
+    if (S_ISREG(st.st_mode) && st.st_size > 0) cbr::mesh::reserve_huge(data, static_cast<std::size_t>(st.st_size));
     // Read in chunks until EOF: also works for pipes and files that change
     // size under us.
     char chunk[1 << 16];

@@ -69,7 +69,7 @@ Status read_off(const std::string& path, std::string_view text, const ReadOption
     if (auto st = cur.check_count(nf, 8, "face count"); !st) return st;
     cur.skip_line();  // edge count, unused
 
-    mesh::reserve_huge(mesh.xyz, static_cast<std::size_t>(nv) * 3);
+    cbr::mesh::reserve_huge(mesh.xyz, static_cast<std::size_t>(nv) * 3);
     for (std::int64_t i = 0; i < nv; ++i) {
         cur.set_context("vertex", i);
         if (!cur.start_record()) {
@@ -88,7 +88,7 @@ Status read_off(const std::string& path, std::string_view text, const ReadOption
         cur.skip_line();
     }
 
-    mesh::reserve_huge(mesh.tris, static_cast<std::size_t>(nf) * 3);
+    cbr::mesh::reserve_huge(mesh.tris, static_cast<std::size_t>(nf) * 3);
     mesh.labels.reserve(static_cast<std::size_t>(nf));
     std::vector<std::int64_t> ids;
     for (std::int64_t f = 0; f < nf; ++f) {
