@@ -59,8 +59,7 @@ std::int64_t to_caller(std::int64_t id, int base) {
 std::vector<double> points_in_caller_order(const cbr::delaunay::Delaunay& d) {
     const std::size_t n = d.mesh().vertex_count();
     std::vector<double> xyz;
-    cbr::mesh::reserve_huge(xyz, 3 * n);
-    xyz.resize(3 * n);
+    cbr::mesh::resize_huge(xyz, 3 * n);
     for (cbr::mesh::VertexId v = 0; v < n; ++v)
         std::memcpy(xyz.data() + 3 * std::size_t{d.external_id(v)}, d.mesh().point(v), 3 * sizeof(double));
     return xyz;
@@ -144,8 +143,7 @@ void cbr::capi::check_faces(cbr_mesh* mesh, std::int64_t count, const std::int64
             "count is too large (" + std::to_string(count) + ")");
     const int base = mesh->index_base;
     std::vector<std::int64_t> ids;
-    cbr::mesh::reserve_huge(ids, 3 * static_cast<std::size_t>(count));
-    ids.resize(3 * static_cast<std::size_t>(count));
+    cbr::mesh::resize_huge(ids, 3 * static_cast<std::size_t>(count));
     for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = to_zero_based(tris[k], base);
     const std::vector<double> xyz = points_in_caller_order(mesh->delaunay);
     cbr::recover::SurfaceCheckOptions options;

@@ -12,12 +12,9 @@ int collect_volume(const cbr_mesh* m, const io::SurfaceMesh& surface, io::Volume
     if (np < 0 || nt < 0 || ns < 0) return CBR_ERR_INTERNAL;
     // Filled here, then read by the writer and Table II: huge pages spare
     // igea's 27 MB of tetrahedra 7,000 page faults.
-    cbr::mesh::reserve_huge(out.xyz, 3 * static_cast<std::size_t>(np));
-    cbr::mesh::reserve_huge(out.tets, 4 * static_cast<std::size_t>(nt));
-    cbr::mesh::reserve_huge(out.tet_regions, static_cast<std::size_t>(nt));
-    out.xyz.resize(3 * static_cast<std::size_t>(np));
-    out.tets.resize(4 * static_cast<std::size_t>(nt));
-    out.tet_regions.resize(static_cast<std::size_t>(nt));
+    cbr::mesh::resize_huge(out.xyz, 3 * static_cast<std::size_t>(np));
+    cbr::mesh::resize_huge(out.tets, 4 * static_cast<std::size_t>(nt));
+    cbr::mesh::resize_huge(out.tet_regions, static_cast<std::size_t>(nt));
     std::vector<std::int64_t> steiner(static_cast<std::size_t>(ns));
     int status = cbr_mesh_get_points(m, out.xyz.data());
     if (status == CBR_OK) status = cbr_mesh_get_tets(m, out.tets.data());

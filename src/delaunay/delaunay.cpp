@@ -74,8 +74,7 @@ void Delaunay::store_batch(const double* xyz, std::size_t count) {
     const std::size_t before = mesh_.vertex_count();
     if (count > mesh::kMaxVertices - before) throw std::length_error("too many points");
     std::vector<VertexId> order;
-    mesh::reserve_huge(order, count);
-    order.resize(count);
+    mesh::resize_huge(order, count);
     std::iota(order.begin(), order.end(), VertexId{0});
     brio_sort(xyz, order, 0xC0FFEEull + count);
     mesh::LargeArray<double> sorted(3 * count);

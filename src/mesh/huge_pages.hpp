@@ -42,4 +42,11 @@ void reserve_huge(Container& v, std::size_t n) {
     advise_huge_pages(v.data(), v.capacity() * sizeof(typename Container::value_type));
 }
 
+// reserve_huge(v, n), then v.resize(n): a vector filled by index.
+template <class Container>
+void resize_huge(Container& v, std::size_t n) {
+    reserve_huge(v, n);
+    v.resize(n);
+}
+
 }  // namespace cbr::mesh

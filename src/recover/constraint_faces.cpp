@@ -28,8 +28,7 @@ void file_by_smallest(std::size_t n, const std::vector<Triangle>& tris, Keep kee
         for (const Triangle& t : tris)
             if (keep(t)) file(std::min({t[0], t[1], t[2]}));
     });
-    mesh::reserve_huge(entries, first[n]);
-    entries.resize(first[n]);
+    mesh::resize_huge(entries, first[n]);
     std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < tris.size(); ++i) {
         if (!keep(tris[i])) continue;
