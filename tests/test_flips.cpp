@@ -564,6 +564,79 @@ TEST_CASE("ShellReplacer agrees with replace_tets on random shells") {
     CHECK(verdicts[ReplaceResult::kNotConvex] > 0);
 }
 
+namespace {
+
+// TwoThreeReplacer against replace_tets on two copies of `base` that
+// evolve together: random 2-3 replacements (ghosts included, which take
+// replace_tets' own path), with random scratch marks on the region, and
+// random 3-2 flips in between, which free slots that later replacements
+// take again. Same verdict, same mesh slot for slot (the free list's
+// order shows in the slots taken), same created list.
+std::map<ReplaceResult, int> compare_two_three_replacements(const TetMesh& base, int trials, std::uint64_t seed) {
+    Rng rng(seed);
+    TwoThreeReplacer two_three;  // one replacer for every trial: its scratch is reused
+    TetMesh m = base, expected_mesh = base;
+    std::map<ReplaceResult, int> verdicts;
+    for (int trial = 0; trial < trials; ++trial) {
+        const TetId t = random_live(m, rng);
+        const int f = static_cast<int>(rng() % 4);
+        if (rng() % 3 == 0) {  // a 3-2 flip on both copies
+            const VertexId u = m.vertex(t, f), v = m.vertex(t, (f + 1) % 4);
+            REQUIRE(flip32(m, t, u, v) == flip32(expected_mesh, t, u, v));
+            continue;
+        }
+        if (rng() % 4 == 0)
+            for (TetId x : {t, facet_tet(m.neighbor(t, f))}) {
+                m.set_mark(x, kFlagMarkA);
+                expected_mesh.set_mark(x, kFlagMarkA);
+            }
+        const VertexId* v = m.vertices(t);
+        const VertexId a = v[kFaceVertices[f][0]], b = v[kFaceVertices[f][1]], c = v[kFaceVertices[f][2]];
+        const VertexId d = v[f], e = m.vertex(facet_tet(m.neighbor(t, f)), facet_face(m.neighbor(t, f)));
+        const std::vector<Tet> fresh = {{a, b, e, d}, {b, c, e, d}, {c, a, e, d}};
+        std::vector<TetId> expected_created, created;
+        const ReplaceResult expected =
+            replace_tets(expected_mesh, {t, facet_tet(m.neighbor(t, f))}, fresh, &expected_created);
+        const ReplaceResult got = two_three.replace(m, t, f, &created);
+        REQUIRE(got == expected);
+        REQUIRE((Snapshot(m) == Snapshot(expected_mesh)));
+        if (got == ReplaceResult::kDone) {
+            CHECK(created == expected_created);
+            require_valid(m);
+        }
+        ++verdicts[expected];
+    }
+    return verdicts;
+}
+
+}  // namespace
+
+// TwoThreeReplacer is replace_tets specialised to the 2-3 flip: on random
+// points and on a grid (coplanar configurations), with random constraint
+// faces, it gives the same verdicts and meshes.
+TEST_CASE("TwoThreeReplacer agrees with replace_tets on random faces") {
+    TetMesh scattered = delaunay_mesh(cbr::test::random_points(80, 47));
+    std::vector<double> grid;
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y)
+            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
+    TetMesh flat = delaunay_mesh(grid);
+    for (TetMesh* m : {&scattered, &flat}) {
+        Rng rng(53);
+        for (TetId t = 0; t < m->slot_count(); ++t)
+            for (int f = 0; f < 4; ++f)
+                if (!m->is_free(t) && rng() % 30 == 0) mark_face(*m, t, f);
+    }
+    std::map<ReplaceResult, int> verdicts = compare_two_three_replacements(scattered, 3000, 59);
+    for (const auto& [r, count] : compare_two_three_replacements(flat, 3000, 61)) verdicts[r] += count;
+    for (const auto& [r, count] : verdicts) MESSAGE(std::string(to_string(r)) << ": " << count);
+    // The trials reach every verdict a 2-3 flip can get.
+    CHECK(verdicts[ReplaceResult::kDone] > 100);
+    CHECK(verdicts[ReplaceResult::kRemovesConstraint] > 0);
+    CHECK(verdicts[ReplaceResult::kInverted] > 100);
+    CHECK(verdicts[ReplaceResult::kNotConvex] > 0);
+}
+
 TEST_CASE("flips that would dent the hull are refused") {
     TetMesh m = delaunay_mesh(cbr::test::random_points(100, 13));
     const Snapshot before(m);

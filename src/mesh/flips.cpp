@@ -33,19 +33,6 @@ bool shell_from(const TetMesh& m, TetId t, VertexId u, VertexId v, Shell& s) {
     return live(m, t) && shell(m, u, v, t, s);
 }
 
-// Definition 5.8: each ring triangle coned to v and (reversed) to u.
-std::vector<Tet> cone_triangles(VertexId u, VertexId v, const Shell& s, const std::vector<RingTriangle>& triangles) {
-    std::vector<Tet> fresh;
-    fresh.reserve(2 * triangles.size());
-    for (const RingTriangle& tri : triangles) {
-        const VertexId a = s.ring[static_cast<std::size_t>(tri[0])], b = s.ring[static_cast<std::size_t>(tri[1])],
-                       c = s.ring[static_cast<std::size_t>(tri[2])];
-        fresh.push_back({a, b, c, v});
-        fresh.push_back({a, c, b, u});
-    }
-    return fresh;
-}
-
 bool valid_triangles(const Shell& s, const std::vector<RingTriangle>& triangles) {
     const int n = static_cast<int>(s.size());
     if (n < 3 || triangles.size() != s.size() - 2) return false;
@@ -53,11 +40,6 @@ bool valid_triangles(const Shell& s, const std::vector<RingTriangle>& triangles)
         for (int i : tri)
             if (i < 0 || i >= n) return false;
     return true;
-}
-
-ReplaceResult replace_shell(TetMesh& m, VertexId u, VertexId v, const Shell& s,
-                            const std::vector<RingTriangle>& triangles, std::vector<TetId>* created) {
-    return replace_tets(m, s.tets, cone_triangles(u, v, s, triangles), created);
 }
 
 // Reused storage: flip recovery removes edges millions of times, and the
@@ -69,6 +51,8 @@ struct FlipScratch {
     // replace_tets for the flips' own ring triangulations of a current
     // shell, by the shell's structure.
     ShellReplacer replacer;
+    // replace_tets for the 2-3 flip, by the flip's structure.
+    TwoThreeReplacer two_three;
 };
 
 FlipScratch& flip_scratch() {
@@ -104,14 +88,9 @@ const char* to_string(FlipResult r) {
 
 FlipResult flip23(TetMesh& m, TetId t, int f, const EdgeProtect& /*protect*/, std::vector<TetId>* created) {
     if (!live(m, t) || f < 0 || f > 3) return FlipResult::kNotApplicable;
-    const FacetRef across = m.neighbor(t, f);
-    const TetId n = facet_tet(across);
-    const VertexId a = m.vertex(t, kFaceVertices[f][0]), b = m.vertex(t, kFaceVertices[f][1]),
-                   c = m.vertex(t, kFaceVertices[f][2]);
-    const VertexId d = m.vertex(t, f), e = m.vertex(n, facet_face(across));
-    // abc points into t, toward d; e is on the other side (Definition 5.6).
-    const std::vector<Tet> fresh = {{a, b, e, d}, {b, c, e, d}, {c, a, e, d}};
-    return checked(replace_tets(m, {t, n}, fresh, created));
+    // abc (face f) points into t, toward d; e is on the other side
+    // (Definition 5.6): (a, b, e, d), (b, c, e, d), (c, a, e, d).
+    return checked(flip_scratch().two_three.replace(m, t, f, created));
 }
 
 FlipResult flip32(TetMesh& m, TetId t, VertexId u, VertexId v, const EdgeProtect& protect,
@@ -152,7 +131,10 @@ FlipResult remove_edge(TetMesh& m, VertexId u, VertexId v, const Shell& s, const
 FlipResult transform_shell(TetMesh& m, VertexId u, VertexId v, const Shell& shell,
                            const std::vector<RingTriangle>& triangles, std::vector<TetId>* created) {
     if (!valid_triangles(shell, triangles)) return FlipResult::kNotApplicable;
-    const ReplaceResult r = replace_shell(m, u, v, shell, triangles, created);
+    // Definition 5.8: each ring triangle coned to v and (reversed) to u,
+    // matched by the shell's structure (nothing checked beforehand).
+    const ReplaceResult r =
+        flip_scratch().replacer.replace(m, u, v, shell, triangles, ShellGeometry::kUnchecked, created);
     if (r == ReplaceResult::kBadInput || r == ReplaceResult::kNotTiling) return FlipResult::kNotApplicable;
     return checked(r);
 }

@@ -637,6 +637,60 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
     return ReplaceResult::kDone;
 }
 
+struct TwoThreeReplacer::Scratch {
+    Plan plan;
+    std::vector<TetId> old;  // {t, n}
+    std::vector<TetId> slots;
+};
+
+TwoThreeReplacer::TwoThreeReplacer() : scratch_(std::make_unique<Scratch>()) {}
+TwoThreeReplacer::~TwoThreeReplacer() = default;
+
+// The checks of replace_tets in its order. With no ghost among the five
+// vertices, and t and n sharing only face f, the region's boundary is the
+// six other faces of t and n, each the face of one fresh tetrahedron with
+// the same orientation, and the three faces through de are shared by two
+// fresh ones: the tiling holds by construction; face f, inside the region,
+// is a face of no fresh tetrahedron.
+ReplaceResult TwoThreeReplacer::replace(TetMesh& m, TetId t, int f, std::vector<TetId>* created) {
+    Scratch& s = *scratch_;
+    if (t >= m.slot_count() || m.is_free(t) || f < 0 || f > 3) return ReplaceResult::kBadInput;
+    const FacetRef across = m.neighbor(t, f);
+    const TetId n = facet_tet(across);
+    const VertexId* tv = m.vertices(t);
+    const VertexId base[3] = {tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]]};
+    const VertexId d = tv[f], e = m.vertex(n, facet_face(across));
+    Plan& plan = s.plan;
+    plan.tets.assign({{base[0], base[1], e, d}, {base[1], base[2], e, d}, {base[2], base[0], e, d}});
+    s.old.assign({t, n});
+    bool general = n == t || d == kGhostVertex || e == kGhostVertex;
+    for (int i = 0; i < 4; ++i) general = general || (i != f && facet_tet(m.neighbor(t, i)) == n);
+    for (VertexId x : base) general = general || x == kGhostVertex;
+    if (general) return replace_tets(m, s.old, plan.tets, created);
+    if (m.is_free(n)) return ReplaceResult::kBadInput;
+    if (m.is_constrained(t, f)) return ReplaceResult::kRemovesConstraint;
+    if (!positively_oriented(m, plan.tets)) return ReplaceResult::kInverted;
+    plan.partner.assign(12, 0);
+    plan.outside.assign(12, 0);
+    plan.marks.assign(3, 0);
+    for (TetId j = 0; j < 3; ++j) {
+        // Fresh tetrahedron j stands on base edge (j, j+1); its face
+        // opposite e is t's face opposite the third base vertex, its face
+        // opposite d is n's.
+        const VertexId third = base[(j + 2) % 3];
+        const int in_t = vertex_index(m, t, third), in_n = vertex_index(m, n, third);
+        set_partner(plan, make_facet(j, 2), m.neighbor(t, in_t), true, m.is_constrained(t, in_t));
+        set_partner(plan, make_facet(j, 3), m.neighbor(n, in_n), true, m.is_constrained(n, in_n));
+        // Its face opposite base vertex j (position 0) is the next one's
+        // face opposite base vertex j+2 (position 1): base vertex j+1, e, d.
+        const TetId next = (j + 1) % 3;
+        set_partner(plan, make_facet(j, 0), make_facet(next, 1), false, false);
+        set_partner(plan, make_facet(next, 1), make_facet(j, 0), false, false);
+    }
+    apply_plan(m, s.old, plan, s.slots, created);
+    return ReplaceResult::kDone;
+}
+
 ShellReplacer::ShellReplacer() : scratch_(std::make_unique<Scratch>()) {}
 ShellReplacer::~ShellReplacer() = default;
 

@@ -91,6 +91,30 @@ private:
     std::unique_ptr<Scratch> scratch_;
 };
 
+// replace_tets for the 2-3 flip (Definition 5.6 Swap23): replaces
+// tetrahedron t = (face f, apex d) and its neighbour n across face f
+// (apex e) by (a, b, e, d), (b, c, e, d), (c, a, e, d), where a, b, c is
+// face f as kFaceVertices[f] lists it in t. Same result, checks, effects
+// and `created` as replace_tets(m, {t, n}, those three), only cheaper
+// (flip recovery and the quality flips try it hundreds of thousands of
+// times): the nine faces are linked by the flip's structure instead of by
+// sorting, and the scratch storage is kept from one call to the next. A
+// flip that involves the ghost vertex takes replace_tets' own path.
+class TwoThreeReplacer {
+public:
+    TwoThreeReplacer();
+    ~TwoThreeReplacer();
+    TwoThreeReplacer(const TwoThreeReplacer&) = delete;
+    TwoThreeReplacer& operator=(const TwoThreeReplacer&) = delete;
+
+    ReplaceResult replace(TetMesh& m, TetId t, int f, std::vector<TetId>* created = nullptr);
+
+    struct Scratch;  // surgery.cpp
+
+private:
+    std::unique_ptr<Scratch> scratch_;
+};
+
 // A triangle of the ring polygon of a shell: three indices into Shell::ring
 // in cyclic ring order (each a rotation of i < j < k).
 using RingTriangle = std::array<int, 3>;
