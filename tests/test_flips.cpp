@@ -393,6 +393,7 @@ TEST_CASE("ConeReplacer agrees with replace_tets on cones over random regions") 
             if (rng() % 40 == 0) mark_face(base, t, f);
     ConeReplacer cones;  // one replacer for every trial: its scratch is reused
     std::map<ReplaceResult, int> verdicts;
+    int restores = 0;
     for (int trial = 0; trial < 3000; ++trial) {
         TetMesh m = base;
         // A connected region grown from a random tetrahedron.
@@ -426,15 +427,31 @@ TEST_CASE("ConeReplacer agrees with replace_tets on cones over random regions") 
                 fresh.push_back(c);
             }
         TetMesh by_faces = m;
+        std::vector<Tet> region;  // the region as it was, for the undo
+        for (TetId t : old) region.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
         std::vector<TetId> created_by_faces, created_by_cones;
         const ReplaceResult expected = replace_tets(by_faces, old, fresh, &created_by_faces);
         const ReplaceResult got = cones.replace(m, old, p, &created_by_cones);
         REQUIRE(got == expected);
         CHECK((Snapshot(m) == Snapshot(by_faces)));
         CHECK(created_by_cones == created_by_faces);
-        if (got == ReplaceResult::kDone) require_valid(m);
         ++verdicts[got];
+        if (got != ReplaceResult::kDone) {
+            CHECK_FALSE(cones.restore_last(m, created_by_cones));  // nothing to undo after a refusal
+            continue;
+        }
+        require_valid(m);
+        // The undo against replace_tets putting the region back: the same
+        // mesh, slot for slot.
+        std::vector<TetId> restored_by_faces, restored;
+        REQUIRE(replace_tets(by_faces, created_by_faces, region, &restored_by_faces) == ReplaceResult::kDone);
+        REQUIRE(cones.restore_last(m, created_by_cones, &restored));
+        CHECK((Snapshot(m) == Snapshot(by_faces)));
+        CHECK(restored == restored_by_faces);
+        CHECK_FALSE(cones.restore_last(m, created_by_cones));  // once
+        ++restores;
     }
+    CHECK(restores > 100);
     // The trials reach every verdict a cone can get.
     CHECK(verdicts[ReplaceResult::kDone] > 100);
     CHECK(verdicts[ReplaceResult::kNotTiling] > 0);
@@ -451,6 +468,59 @@ TEST_CASE("ConeReplacer agrees with replace_tets on cones over random regions") 
     const VertexId corner = m.vertex(t, 0) == kGhostVertex ? m.vertex(t, 1) : m.vertex(t, 0);
     CHECK(cones.replace(m, {t}, corner) == ReplaceResult::kBadInput);
     CHECK((Snapshot(m) == before));
+    // A star that changed since is not undone: the mesh stays as it is.
+    const TetId host = m.is_ghost(t) ? facet_tet(m.neighbor(t, 3)) : t;
+    std::array<double, 3> centroid{};
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) centroid[k] += 0.25 * m.point(m.vertex(host, i))[k];
+    const std::size_t live_before = m.live_count();
+    const Tet host_vertices = {m.vertex(host, 0), m.vertex(host, 1), m.vertex(host, 2), m.vertex(host, 3)};
+    const VertexId p = m.add_points(centroid.data(), 1);
+    std::vector<TetId> star;
+    REQUIRE(cones.replace(m, {host}, p, &star) == ReplaceResult::kDone);
+    const Snapshot four(m);
+    std::vector<TetId> moved = star;
+    std::swap(moved[0], moved[1]);  // cone 0 listed where cone 1 is
+    CHECK_FALSE(cones.restore_last(m, moved));
+    CHECK((Snapshot(m) == four));
+    REQUIRE(cones.restore_last(m, star));
+    m.truncate_vertices(p);
+    require_valid(m);
+    CHECK(m.live_count() == live_before);
+    for (int i = 0; i < 4; ++i) CHECK(m.vertex(host, i) == host_vertices[static_cast<std::size_t>(i)]);
+}
+
+// A region with more tetrahedra than boundary faces (every triangulation
+// of points on two skew lines has (n - 1)^2 tetrahedra and 4n - 4 hull
+// faces: 25 and 20 for n = 6), starred from a point inside and put back:
+// the region's last tetrahedra return in other slots, linked as
+// replace_tets links them.
+TEST_CASE("ConeReplacer puts back a region larger than its star") {
+    std::vector<double> xyz;
+    for (int i = 0; i < 6; ++i) xyz.insert(xyz.end(), {0.2 * i, 0.0, 0.0});
+    for (int i = 0; i < 6; ++i) xyz.insert(xyz.end(), {0.5, -0.5 + 0.2 * i, 1.0});
+    xyz.insert(xyz.end(), {0.5, 0.0, 0.5});  // the apex, added after the triangulation
+    std::vector<double> lines(xyz.begin(), xyz.end() - 3);
+    TetMesh m = delaunay_mesh(lines);
+    std::vector<TetId> old;
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (cbr::test::live_finite(m, t)) old.push_back(t);
+    REQUIRE(old.size() == 25);
+    std::vector<Tet> region;
+    for (TetId t : old) region.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
+    const VertexId p = m.add_points(&xyz[xyz.size() - 3], 1);
+    ConeReplacer cones;
+    std::vector<TetId> star, restored, restored_by_faces;
+    REQUIRE(cones.replace(m, old, p, &star) == ReplaceResult::kDone);
+    REQUIRE(star.size() == 20);
+    TetMesh by_faces = m;
+    REQUIRE(replace_tets(by_faces, star, region, &restored_by_faces) == ReplaceResult::kDone);
+    REQUIRE(cones.restore_last(m, star, &restored));
+    CHECK((Snapshot(m) == Snapshot(by_faces)));
+    CHECK(restored == restored_by_faces);
+    CHECK(restored != old);  // five came back in other slots
+    m.truncate_vertices(p);
+    require_valid(m);
 }
 
 namespace {

@@ -376,6 +376,21 @@ struct ConeReplacer::Scratch {
     SlotMarks in_old;            // per slot: kInOld
     std::vector<EdgeSlot> edges;  // see EdgeSlot; a power of two long
     std::vector<TetId> slots;
+    // What restore_last() puts back, from the last successful replace():
+    // the replaced tetrahedra (vertices and neighbour links, in the order
+    // of `old`), the apex, and per cone the face of `old` it stands on
+    // (4 * index in `old` + face).
+    std::vector<TetId> old_slots;
+    std::vector<Tet> old_vertices;
+    std::vector<std::array<FacetRef, 4>> old_neighbors;
+    VertexId apex = kGhostVertex;
+    std::vector<std::uint32_t> cone_base;
+    // restore_last's scratch, per face of `old`: 1 + the constraint mark
+    // for a face on the region's boundary (0 inside), and what the cone on
+    // it is linked to.
+    std::vector<std::uint8_t> boundary;
+    std::vector<FacetRef> outside;
+    std::vector<std::pair<TetId, TetId>> moved;  // (old slot, index in `old`), sorted
 };
 
 namespace {
@@ -620,6 +635,7 @@ ConeReplacer::~ConeReplacer() = default;
 ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, VertexId p,
                                     std::vector<TetId>* created) {
     Scratch& s = *scratch_;
+    s.old_vertices.clear();  // nothing to restore unless this one is done
     if (old.empty() || p >= m.vertex_count()) return ReplaceResult::kBadInput;
     s.in_old.new_round(m.slot_count());
     for (TetId t : old) {
@@ -633,8 +649,86 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
     if (interior_constraint) return ReplaceResult::kRemovesConstraint;
     const ReplaceResult r = check_geometry(m, old, s.plan);
     if (r != ReplaceResult::kDone) return r;
+    remember_old(m, old, p);
     apply_plan(m, old, s.plan, s.slots, created);
     return ReplaceResult::kDone;
+}
+
+void ConeReplacer::remember_old(const TetMesh& m, const std::vector<TetId>& old, VertexId p) {
+    Scratch& s = *scratch_;
+    s.old_slots = old;
+    s.old_vertices.clear();
+    s.old_neighbors.clear();
+    s.cone_base.clear();
+    s.apex = p;
+    for (std::size_t i = 0; i < old.size(); ++i) {
+        const TetId t = old[i];
+        s.old_vertices.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
+        s.old_neighbors.push_back({m.neighbor(t, 0), m.neighbor(t, 1), m.neighbor(t, 2), m.neighbor(t, 3)});
+        for (int f = 0; f < 4; ++f)  // the cones in build_cones' order
+            if (!s.in_old.has(facet_tet(m.neighbor(t, f)), kInOld))
+                s.cone_base.push_back(static_cast<std::uint32_t>(4 * i + static_cast<std::size_t>(f)));
+    }
+}
+
+// What replace_tets(m, created, the old tetrahedra) would do, written
+// directly. The star took the region's slots first, so created[i] is
+// old[i] for i below both counts; replace_tets takes the star's slots in
+// order, then free ones (take_slots), so tetrahedron i of `old` goes
+// into slots[i], linked to the others as it was (through the slot each
+// now has) and, across the region's boundary, to what the cone on that
+// face is linked to now, with that face's constraint mark; the star's
+// slots beyond the region's count are freed in order.
+bool ConeReplacer::restore_last(TetMesh& m, const std::vector<TetId>& created, std::vector<TetId>* restored) {
+    Scratch& s = *scratch_;
+    const std::size_t k = s.old_vertices.size();
+    if (k == 0 || created.size() != s.cone_base.size()) return false;
+    s.boundary.assign(4 * k, 0);
+    s.outside.resize(4 * k);
+    for (std::size_t j = 0; j < created.size(); ++j) {
+        const TetId cone = created[j];
+        const std::uint32_t base = s.cone_base[j];
+        const int f = static_cast<int>(base % 4);
+        // The star as replace() left it: live, its apex where it was put.
+        if (cone >= m.slot_count() || m.is_free(cone) || m.vertex(cone, f) != s.apex) return false;
+        s.outside[base] = m.neighbor(cone, f);
+        s.boundary[base] = m.is_constrained(cone, f) ? 2 : 1;
+    }
+    take_slots(m, created, k, s.slots);
+    // Where the star is smaller than the region (a flat region has more
+    // tetrahedra than faces), the rest of it comes back in other slots:
+    // its inner links go by the old slot's index in `old`.
+    s.moved.clear();
+    if (created.size() < k) {
+        for (std::size_t i = 0; i < k; ++i) s.moved.emplace_back(s.old_slots[i], static_cast<TetId>(i));
+        std::sort(s.moved.begin(), s.moved.end());
+    }
+    const auto now = [&](FacetRef was) {
+        if (s.moved.empty()) return was;
+        const auto it = std::lower_bound(s.moved.begin(), s.moved.end(), std::make_pair(facet_tet(was), TetId{0}));
+        return make_facet(s.slots[it->second], facet_face(was));
+    };
+    for (std::size_t i = 0; i < k; ++i) {
+        const Tet& v = s.old_vertices[i];
+        m.set_vertices(s.slots[i], v[0], v[1], v[2], v[3]);
+        m.clear_mark(s.slots[i], 0xFF);
+        for (int f = 0; f < 4; ++f) m.set_constrained(s.slots[i], f, s.boundary[4 * i + static_cast<std::size_t>(f)] == 2);
+    }
+    for (std::size_t i = 0; i < k; ++i)
+        for (int f = 0; f < 4; ++f) {
+            const std::size_t face = 4 * i + static_cast<std::size_t>(f);
+            if (s.boundary[face] != 0) m.link(make_facet(s.slots[i], f), s.outside[face]);
+            else m.set_neighbor(s.slots[i], f, now(s.old_neighbors[i][static_cast<std::size_t>(f)]));
+        }
+    for (std::size_t j = k; j < created.size(); ++j) {
+        try {
+            m.release_tet(created[j]);
+        } catch (...) {  // flagged free already: leaked, not live (as apply_plan)
+        }
+    }
+    if (restored) restored->assign(s.slots.begin(), s.slots.end());
+    s.old_vertices.clear();  // once
+    return true;
 }
 
 struct TwoThreeReplacer::Scratch {

@@ -85,9 +85,22 @@ public:
     ReplaceResult replace(TetMesh& m, const std::vector<TetId>& old, VertexId p,
                           std::vector<TetId>* created = nullptr);
 
+    // Undoes the last replace() that returned kDone, given the `created`
+    // it returned: the same as replace_tets(m, created, the old
+    // tetrahedra as they were, restored), only without its checks and
+    // sorting (where points are tried, an undone insertion is as common as
+    // a kept one: the unblocking points of flip recovery, sliver points).
+    // The mesh must not have changed since replace(): the star's
+    // tetrahedra are checked to be live with p where it was put, and false
+    // is returned, the mesh unchanged, when they are not, or when there is
+    // nothing to undo (once undone, or after a replace() that failed).
+    bool restore_last(TetMesh& m, const std::vector<TetId>& created, std::vector<TetId>* restored = nullptr);
+
     struct Scratch;  // surgery.cpp
 
 private:
+    void remember_old(const TetMesh& m, const std::vector<TetId>& old, VertexId p);
+
     std::unique_ptr<Scratch> scratch_;
 };
 
