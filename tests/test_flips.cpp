@@ -549,6 +549,25 @@ std::vector<Tet> ring_cones(VertexId u, VertexId v, const Shell& s, const std::v
     return fresh;
 }
 
+// The meshes the replacers are compared on: 80 random points (few
+// coplanar configurations) and a 4 x 4 x 3 grid (flat hull faces,
+// coplanar rings: the cases of CAD surfaces), each with about one face in
+// `one_in` marked as a constraint face.
+std::array<TetMesh, 2> replacement_test_meshes(std::uint64_t points_seed, std::uint64_t marks_seed, unsigned one_in) {
+    std::vector<double> grid;
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y)
+            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
+    std::array<TetMesh, 2> meshes = {delaunay_mesh(cbr::test::random_points(80, points_seed)), delaunay_mesh(grid)};
+    for (TetMesh& m : meshes) {
+        Rng rng(marks_seed);
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            for (int f = 0; f < 4; ++f)
+                if (!m.is_free(t) && rng() % one_in == 0) mark_face(m, t, f);
+    }
+    return meshes;
+}
+
 // ShellReplacer against replace_tets on random shells of `base` (edges
 // with a ghost endpoint or ghosts in the ring included): the best ring
 // triangulation (also with the checks it vouches for skipped), random
@@ -606,23 +625,11 @@ std::map<ReplaceResult, int> compare_shell_replacements(const TetMesh& base, int
 
 }  // namespace
 
-// ShellReplacer is replace_tets specialised to the shell transformation: on
-// random points (few coplanar configurations) and on a grid (flat hull
-// faces, coplanar rings: the cases of CAD surfaces), with random
-// constraint faces, it gives the same verdicts and meshes.
+// ShellReplacer is replace_tets specialised to the shell transformation:
+// on random points and on a grid (replacement_test_meshes), it gives the
+// same verdicts and meshes.
 TEST_CASE("ShellReplacer agrees with replace_tets on random shells") {
-    TetMesh scattered = delaunay_mesh(cbr::test::random_points(80, 31));
-    std::vector<double> grid;
-    for (int x = 0; x < 4; ++x)
-        for (int y = 0; y < 4; ++y)
-            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
-    TetMesh flat = delaunay_mesh(grid);
-    for (TetMesh* m : {&scattered, &flat}) {
-        Rng rng(37);
-        for (TetId t = 0; t < m->slot_count(); ++t)
-            for (int f = 0; f < 4; ++f)
-                if (!m->is_free(t) && rng() % 60 == 0) mark_face(*m, t, f);
-    }
+    const auto [scattered, flat] = replacement_test_meshes(31, 37, 60);
     std::map<ReplaceResult, int> verdicts = compare_shell_replacements(scattered, 3000, 41);
     for (const auto& [r, count] : compare_shell_replacements(flat, 3000, 43)) verdicts[r] += count;
     for (const auto& [r, count] : verdicts) MESSAGE(std::string(to_string(r)) << ": " << count);
@@ -682,21 +689,10 @@ std::map<ReplaceResult, int> compare_two_three_replacements(const TetMesh& base,
 }  // namespace
 
 // TwoThreeReplacer is replace_tets specialised to the 2-3 flip: on random
-// points and on a grid (coplanar configurations), with random constraint
-// faces, it gives the same verdicts and meshes.
+// points and on a grid (replacement_test_meshes), it gives the same
+// verdicts and meshes.
 TEST_CASE("TwoThreeReplacer agrees with replace_tets on random faces") {
-    TetMesh scattered = delaunay_mesh(cbr::test::random_points(80, 47));
-    std::vector<double> grid;
-    for (int x = 0; x < 4; ++x)
-        for (int y = 0; y < 4; ++y)
-            for (int z = 0; z < 3; ++z) grid.insert(grid.end(), {double(x), double(y), double(z)});
-    TetMesh flat = delaunay_mesh(grid);
-    for (TetMesh* m : {&scattered, &flat}) {
-        Rng rng(53);
-        for (TetId t = 0; t < m->slot_count(); ++t)
-            for (int f = 0; f < 4; ++f)
-                if (!m->is_free(t) && rng() % 30 == 0) mark_face(*m, t, f);
-    }
+    const auto [scattered, flat] = replacement_test_meshes(47, 53, 30);
     std::map<ReplaceResult, int> verdicts = compare_two_three_replacements(scattered, 3000, 59);
     for (const auto& [r, count] : compare_two_three_replacements(flat, 3000, 61)) verdicts[r] += count;
     for (const auto& [r, count] : verdicts) MESSAGE(std::string(to_string(r)) << ": " << count);

@@ -712,7 +712,8 @@ bool ConeReplacer::restore_last(TetMesh& m, const std::vector<TetId>& created, s
         const Tet& v = s.old_vertices[i];
         m.set_vertices(s.slots[i], v[0], v[1], v[2], v[3]);
         m.clear_mark(s.slots[i], 0xFF);
-        for (int f = 0; f < 4; ++f) m.set_constrained(s.slots[i], f, s.boundary[4 * i + static_cast<std::size_t>(f)] == 2);
+        for (int f = 0; f < 4; ++f)
+            m.set_constrained(s.slots[i], f, s.boundary[4 * i + static_cast<std::size_t>(f)] == 2);
     }
     for (std::size_t i = 0; i < k; ++i)
         for (int f = 0; f < 4; ++f) {
