@@ -1402,6 +1402,37 @@ TEST_CASE("the undo journal puts back every slot, flag and the free list") {
     require_valid(m);
 }
 
+// set_tet, with which every replacement writes its fresh slots: the whole
+// record, only the given faces constrained, no other flag left; the
+// neighbours' links back untouched; journaled like any change.
+TEST_CASE("set_tet writes a slot whole and is undone by the journal") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(40, 67));
+    Rng rng(71);
+    const TetId t = random_live(m, rng);
+    m.set_mark(t, kFlagMarkA | kFlagMarkB);
+    m.set_constrained(t, 1, true);
+    m.set_constrained(t, 3, true);
+    const FacetRef across = m.neighbor(t, 0);
+    const Snapshot before(m);
+    m.open_journal();
+    const VertexId v[4] = {m.vertex(t, 1), m.vertex(t, 0), m.vertex(t, 2), m.vertex(t, 3)};
+    const FacetRef n[4] = {m.neighbor(t, 1), m.neighbor(t, 0), make_facet(t, 2), m.neighbor(t, 3)};
+    m.set_tet(t, v, n, 0b0101);
+    for (int i = 0; i < 4; ++i) {
+        CHECK(m.vertex(t, i) == v[i]);
+        CHECK(m.neighbor(t, i) == n[i]);
+    }
+    CHECK(m.is_constrained(t, 0));
+    CHECK_FALSE(m.is_constrained(t, 1));
+    CHECK(m.is_constrained(t, 2));
+    CHECK_FALSE(m.is_constrained(t, 3));
+    CHECK(m.flags(t) == static_cast<std::uint8_t>(kFlagConstraintFace0 | (kFlagConstraintFace0 << 2)));
+    CHECK(m.neighbor(facet_tet(across), facet_face(across)) == make_facet(t, 0));  // the link back as it was
+    m.undo_journal();
+    m.close_journal();
+    CHECK((Snapshot(m) == before));
+}
+
 TEST_CASE("ring_positions_blocking_first: the ears that cone an inverted tetrahedron first, each group in ring order; two separate valid ears needed") {
     // Checked on every interior edge of a Delaunay mesh of random points
     // against orient3d directly: the ear (r[i-1], r[i], r[i+1]) is valid

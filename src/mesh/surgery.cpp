@@ -310,23 +310,26 @@ void take_slots(TetMesh& m, const std::vector<TetId>& old, std::size_t count, st
     }
 }
 
+// Each fresh slot written whole (set_tet: one journal check), then the
+// outside neighbours' links back.
 void write_plan(TetMesh& m, const Plan& plan, const std::vector<TetId>& slots) {
     for (std::size_t j = 0; j < plan.tets.size(); ++j) {
-        const Tet& t = plan.tets[j];
-        m.set_vertices(slots[j], t[0], t[1], t[2], t[3]);
-        m.clear_mark(slots[j], 0xFF);
-        for (int f = 0; f < 4; ++f) m.set_constrained(slots[j], f, ((plan.marks[j] >> f) & 1u) != 0);
-    }
-    for (std::size_t j = 0; j < plan.tets.size(); ++j) {
+        FacetRef n[4];
         for (int f = 0; f < 4; ++f) {
             const std::size_t half = 4 * j + static_cast<std::size_t>(f);
             const FacetRef r = plan.partner[half];
-            if (plan.outside[half])
-                m.link(make_facet(slots[j], f), r);
-            else
-                m.set_neighbor(slots[j], f, make_facet(slots[facet_tet(r)], facet_face(r)));
+            n[f] = plan.outside[half] ? r : make_facet(slots[facet_tet(r)], facet_face(r));
         }
+        m.set_tet(slots[j], plan.tets[j].data(), n, plan.marks[j]);
     }
+    for (std::size_t j = 0; j < plan.tets.size(); ++j)
+        for (int f = 0; f < 4; ++f) {
+            const std::size_t half = 4 * j + static_cast<std::size_t>(f);
+            if (plan.outside[half]) {
+                const FacetRef r = plan.partner[half];
+                m.set_neighbor(facet_tet(r), facet_face(r), make_facet(slots[j], f));
+            }
+        }
 }
 
 // Carries out a checked plan: slots, tetrahedra and links, surplus old
@@ -709,17 +712,20 @@ bool ConeReplacer::restore_last(TetMesh& m, const std::vector<TetId>& created, s
         return make_facet(s.slots[it->second], facet_face(was));
     };
     for (std::size_t i = 0; i < k; ++i) {
-        const Tet& v = s.old_vertices[i];
-        m.set_vertices(s.slots[i], v[0], v[1], v[2], v[3]);
-        m.clear_mark(s.slots[i], 0xFF);
-        for (int f = 0; f < 4; ++f)
-            m.set_constrained(s.slots[i], f, s.boundary[4 * i + static_cast<std::size_t>(f)] == 2);
+        FacetRef n[4];
+        std::uint8_t constrained = 0;
+        for (int f = 0; f < 4; ++f) {
+            const std::size_t face = 4 * i + static_cast<std::size_t>(f);
+            n[f] = s.boundary[face] != 0 ? s.outside[face] : now(s.old_neighbors[i][static_cast<std::size_t>(f)]);
+            if (s.boundary[face] == 2) constrained |= static_cast<std::uint8_t>(1u << f);
+        }
+        m.set_tet(s.slots[i], s.old_vertices[i].data(), n, constrained);
     }
     for (std::size_t i = 0; i < k; ++i)
         for (int f = 0; f < 4; ++f) {
             const std::size_t face = 4 * i + static_cast<std::size_t>(f);
-            if (s.boundary[face] != 0) m.link(make_facet(s.slots[i], f), s.outside[face]);
-            else m.set_neighbor(s.slots[i], f, now(s.old_neighbors[i][static_cast<std::size_t>(f)]));
+            if (s.boundary[face] != 0)
+                m.set_neighbor(facet_tet(s.outside[face]), facet_face(s.outside[face]), make_facet(s.slots[i], f));
         }
     for (std::size_t j = k; j < created.size(); ++j) {
         try {

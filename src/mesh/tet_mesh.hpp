@@ -91,6 +91,19 @@ public:
     std::uint8_t flags(TetId t) const { return flags_[t]; }
 
     void set_vertices(TetId t, VertexId a, VertexId b, VertexId c, VertexId d);
+    // Writes slot t whole, as a replacement fills it: vertices, neighbours
+    // and flags, where the faces whose bit f is set in `constrained` are
+    // constraint faces and every other flag (free, scratch marks) is
+    // cleared. The neighbours' links back are left to the caller.
+    void set_tet(TetId t, const VertexId v[4], const FacetRef n[4], std::uint8_t constrained) {
+        before_change(t);
+        TetRecord& r = tets_[t];
+        for (int i = 0; i < 4; ++i) {
+            r.v[i] = v[i];
+            r.n[i] = n[i];
+        }
+        flags_[t] = static_cast<std::uint8_t>((constrained & 0xFu) << 4);
+    }
     void set_vertex(TetId t, int i, VertexId v) {
         before_change(t);
         tets_[t].v[i] = v;
