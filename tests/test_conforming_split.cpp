@@ -239,7 +239,8 @@ struct SplitStats {
 // mesh after result r: a valid mesh, every input triangle a face, the
 // input points where they were (`input`: their coordinates before), the
 // Steiner points after them and none on an input triangle.
-void check_recovered_case(Case& c, const cbr::recover::RecoveryResult& r, const std::vector<double>& input) {
+void check_recovered_case(Case& c, const cbr::recover::RecoveryResult& r,
+                          const cbr::mesh::LargeArray<double>& input) {
     TetMesh& m = c.m();
     require_valid(m, "after recover_faces");
     CHECK(cbr::recover::mark_present_faces(m, *c.faces).empty());
@@ -976,7 +977,7 @@ TEST_CASE("recover_faces: Schonhardt prism, stack and rotated variants") {
         Case c;
         build(c, v.p.xyz, v.p.tris);
         TetMesh& m = c.m();
-        const std::vector<double> input(m.coordinates().begin(), m.coordinates().end());
+        const auto input = m.coordinates();
         cbr::recover::RecoveryStats stats;
         const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(m, *c.faces, stats);
         REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
@@ -1238,7 +1239,7 @@ cbr::recover::RecoveryStats recover_checked(const cbr::test::OffSurface& s,
                                             const cbr::recover::RecoveryOptions& options = {}) {
     Case c;
     build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
+    const auto input = c.m().coordinates();
     cbr::recover::RecoveryStats stats;
     const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, options);
     REQUIRE_MESSAGE(r.ok, r.why << (r.invalid.empty() ? std::string() : " / " + r.invalid[0]));
@@ -1406,7 +1407,7 @@ TEST_CASE("recover_faces: a turned prism that fails in the default flip state re
     for (const int budget : cbr::recover::kRetryFlipBudgets) {
         Case c;
         build(c, s.xyz, s.tris);
-        const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
+        const auto input = c.m().coordinates();
         cbr::recover::RecoveryOptions other = in_ring_order();
         other.deepest_flip_budget = budget;
         cbr::recover::RecoveryStats stats;
@@ -1456,7 +1457,7 @@ TEST_CASE("recover_faces: a face-interior crossing rounded behind its shell is t
     REQUIRE(cbr::test::read_off(CBR_TEST_DATA_DIR "/recover/prism-200-fan-caps-radius30-h1-r20.off", s));
     Case c;
     build(c, s.xyz, s.tris);
-    const std::vector<double> input(c.m().coordinates().begin(), c.m().coordinates().end());
+    const auto input = c.m().coordinates();
     cbr::recover::RecoveryStats stats;
     const cbr::recover::RecoveryResult r = cbr::recover::recover_faces(c.m(), *c.faces, stats, in_ring_order());
     REQUIRE_MESSAGE(r.ok, r.why);

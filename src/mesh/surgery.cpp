@@ -382,7 +382,7 @@ struct ConeReplacer::Scratch {
     // What restore_last() puts back, from the last successful replace():
     // the replaced tetrahedra (vertices and neighbour links, in the order
     // of `old`), the apex, and per cone the face of `old` it stands on
-    // (4 * index in `old` + face).
+    // (4 * index in `old` + face; build_cones fills it).
     std::vector<TetId> old_slots;
     std::vector<Tet> old_vertices;
     std::vector<std::array<FacetRef, 4>> old_neighbors;
@@ -400,17 +400,21 @@ namespace {
 
 // The cones over the boundary faces of `old` (by tetrahedron of `old`, then
 // face) in plan.tets, each cone's face on the boundary linked to the
-// outside with its constraint mark; `interior_constraint` tells whether a
-// constraint face lies between two tetrahedra of `old`. False when
-// replace_tets would reject the input (kBadInput). `old` is marked in_old.
+// outside with its constraint mark, and per cone the face it stands on in
+// `cone_base` (4 * index in `old` + face); `interior_constraint` tells
+// whether a constraint face lies between two tetrahedra of `old`. False
+// when replace_tets would reject the input (kBadInput). `old` is marked
+// in_old.
 bool build_cones(const TetMesh& m, const std::vector<TetId>& old, VertexId p, const SlotMarks& in_old, Plan& plan,
-                 bool& interior_constraint) {
+                 std::vector<std::uint32_t>& cone_base, bool& interior_constraint) {
     plan.tets.clear();
     plan.partner.clear();
     plan.outside.clear();
     plan.marks.clear();
+    cone_base.clear();
     interior_constraint = false;
-    for (TetId t : old) {
+    for (std::size_t k = 0; k < old.size(); ++k) {
+        const TetId t = old[k];
         const VertexId* v = m.vertices(t);
         for (int f = 0; f < 4; ++f) {
             if (in_old.has(facet_tet(m.neighbor(t, f)), kInOld)) {
@@ -422,6 +426,7 @@ bool build_cones(const TetMesh& m, const std::vector<TetId>& old, VertexId p, co
                 if (i != f && cone[static_cast<std::size_t>(i)] == p) return false;  // a repeated vertex
             cone[static_cast<std::size_t>(f)] = p;
             plan.tets.push_back(cone);
+            cone_base.push_back(static_cast<std::uint32_t>(4 * k + static_cast<std::size_t>(f)));
             const std::uint8_t mark = m.is_constrained(t, f) ? static_cast<std::uint8_t>(1u << f) : 0;
             for (int g = 0; g < 4; ++g) {
                 plan.partner.push_back(g == f ? m.neighbor(t, f) : 0);
@@ -646,7 +651,7 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
         s.in_old.set(t, kInOld);
     }
     bool interior_constraint = false;
-    if (!build_cones(m, old, p, s.in_old, s.plan, interior_constraint)) return ReplaceResult::kBadInput;
+    if (!build_cones(m, old, p, s.in_old, s.plan, s.cone_base, interior_constraint)) return ReplaceResult::kBadInput;
     const ReplaceResult tiling = link_faces_through_apex(s.plan, p, s.edges);
     if (tiling != ReplaceResult::kDone) return tiling;
     if (interior_constraint) return ReplaceResult::kRemovesConstraint;
@@ -657,20 +662,17 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
     return ReplaceResult::kDone;
 }
 
+// The region as it is, before apply_plan reuses its slots (the cones'
+// bases are build_cones').
 void ConeReplacer::remember_old(const TetMesh& m, const std::vector<TetId>& old, VertexId p) {
     Scratch& s = *scratch_;
     s.old_slots = old;
     s.old_vertices.clear();
     s.old_neighbors.clear();
-    s.cone_base.clear();
     s.apex = p;
-    for (std::size_t i = 0; i < old.size(); ++i) {
-        const TetId t = old[i];
+    for (TetId t : old) {
         s.old_vertices.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
         s.old_neighbors.push_back({m.neighbor(t, 0), m.neighbor(t, 1), m.neighbor(t, 2), m.neighbor(t, 3)});
-        for (int f = 0; f < 4; ++f)  // the cones in build_cones' order
-            if (!s.in_old.has(facet_tet(m.neighbor(t, f)), kInOld))
-                s.cone_base.push_back(static_cast<std::uint32_t>(4 * i + static_cast<std::size_t>(f)));
     }
 }
 

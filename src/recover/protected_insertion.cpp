@@ -528,9 +528,7 @@ const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->
 
 bool ProtectedInserter::undo_last(TetMesh& m, VertexId p, std::vector<TetId>& restored) {
     const ProtectedInsertResult& r = scratch_->result;
-    if (!r.ok || std::size_t{p} + 1 != m.vertex_count() ||
-        (!scratch_->star.restore_last(m, r.created, &restored) &&
-         mesh::replace_tets(m, r.created, r.cavity, &restored) != mesh::ReplaceResult::kDone))
+    if (!r.ok || std::size_t{p} + 1 != m.vertex_count() || !scratch_->star.restore_last(m, r.created, &restored))
         throw InternalError("protected insertion: the cavity of an undone point could not be put back");
     m.truncate_vertices(p);
     return r.created.size() >= r.cavity.size();
