@@ -8,11 +8,14 @@
 #include <set>
 
 #include "delaunay/delaunay.hpp"
+#include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
 #include "mesh/mesh_check.hpp"
 #include "recover/constraint_faces.hpp"
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
+#include "recover/segment_crossings.hpp"
 #include "recover/segment_walk.hpp"
 #include "geom/point_in_triangle.hpp"
 #include "mesh/mesh_check.hpp"
@@ -383,5 +386,107 @@ TEST_CASE("classify_segment_face gives classify_segment_triangle's kind, shortcu
         MESSAGE("compared " << compared << ", at one end " << at_one_end << ", in its plane " << in_plane);
         CHECK(at_one_end > 0);
         if (grid) CHECK(in_plane > 0);  // the fallback is exercised
+    }
+}
+
+namespace {
+
+using cbr::recover::Crossing;
+
+// SegmentCrossings' search written the plain way: every face of every
+// tetrahedron found classified (a shared face twice, once from each side),
+// every edge tested the first time it is met.
+std::vector<Crossing> crossings_the_plain_way(const TetMesh& m, VertexId u, TetId start, VertexId w,
+                                              std::size_t max_tets) {
+    std::vector<Crossing> out;
+    std::vector<TetId> near;
+    if (!cbr::mesh::ball(m, u, start, near)) return out;
+    std::set<TetId> seen(near.begin(), near.end());
+    std::set<std::pair<VertexId, VertexId>> tried;
+    const double* pu = m.point(u);
+    const double* pw = m.point(w);
+    for (std::size_t i = 0; i < near.size() && near.size() < max_tets; ++i) {
+        const TetId t = near[i];
+        if (m.is_ghost(t)) continue;
+        const VertexId* v = m.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            const int* k = cbr::mesh::kFaceVertices[f];
+            const auto kind = cbr::recover::classify_segment_face(m, u, w, v[k[0]], v[k[1]], v[k[2]]);
+            if (kind == cbr::geom::SegTriKind::Disjoint || kind == cbr::geom::SegTriKind::EndpointVertex) continue;
+            if (kind == cbr::geom::SegTriKind::CrossInterior) {
+                Crossing c{};
+                c.kind = Crossing::kFace;
+                c.tet = t;
+                c.face = f;
+                out.push_back(c);
+            }
+            const TetId n = cbr::mesh::facet_tet(m.neighbor(t, f));
+            if (seen.insert(n).second) near.push_back(n);
+        }
+        for (int i0 = 0; i0 < 4; ++i0)
+            for (int i1 = i0 + 1; i1 < 4; ++i1) {
+                const VertexId x = v[i0], y = v[i1];
+                if (x == u || x == w || y == u || y == w) continue;
+                if (!tried.insert({std::min(x, y), std::max(x, y)}).second) continue;
+                const double* px = m.point(x);
+                const double* py = m.point(y);
+                if (cbr::geom::orient3d(pu, pw, px, py) != 0 || cbr::geom::collinear(pu, pw, px) ||
+                    cbr::geom::collinear(pu, pw, py) ||
+                    cbr::geom::classify_coplanar_segments(pu, pw, px, py) != cbr::geom::SegSegKind::Point)
+                    continue;
+                Crossing c{};
+                c.kind = Crossing::kEdge;
+                c.tet = t;
+                c.x = x;
+                c.y = y;
+                out.push_back(c);
+            }
+    }
+    return out;
+}
+
+bool same_crossing(const Crossing& a, const Crossing& b) {
+    return a.kind == b.kind && a.tet == b.tet && a.face == b.face && a.x == b.x && a.y == b.y;
+}
+
+}  // namespace
+
+// SegmentCrossings classifies a face shared by two tetrahedra once and
+// tests an edge only where both faces of the tetrahedron that hold it meet
+// the segment: the list (and so flip recovery's order of tries) must be
+// the plain search's, crossing for crossing, on scattered points and on a
+// grid (segments through edges and along faces), with and without a cap on
+// the tetrahedra searched. One searcher for every segment: its marks and
+// face records are reused.
+TEST_CASE("SegmentCrossings lists the crossings of the plain search, in its order") {
+    cbr::recover::SegmentCrossings search;
+    for (const bool grid : {true, false}) {
+        CAPTURE(grid);
+        const TetMesh m = cbr::test::delaunay_mesh(grid ? cbr::test::grid_points(5) : cbr::test::random_points(150, 52));
+        const std::vector<TetId> incident = cbr::mesh::incident_tets(m);
+        const VertexId n = static_cast<VertexId>(m.vertex_count());
+        std::mt19937_64 rng(grid ? 11 : 12);
+        std::size_t faces = 0, edges = 0;
+        for (int pair = 0; pair < 400; ++pair) {
+            const VertexId u = static_cast<VertexId>(rng() % n);
+            VertexId w = static_cast<VertexId>(rng() % n);
+            if (w == u) w = (w + 1) % n;
+            const std::size_t cap = pair % 4 == 0 ? 12 : 4096;
+            CAPTURE(u);
+            CAPTURE(w);
+            CAPTURE(cap);
+            const std::vector<Crossing> expected = crossings_the_plain_way(m, u, incident[u], w, cap);
+            REQUIRE(search.find(m, u, incident[u], w, cap));
+            const std::vector<Crossing>& got = search.crossings();
+            REQUIRE(got.size() == expected.size());
+            for (std::size_t i = 0; i < got.size(); ++i) {
+                CAPTURE(i);
+                CHECK(same_crossing(got[i], expected[i]));
+                (got[i].kind == Crossing::kFace ? faces : edges) += 1;
+            }
+        }
+        MESSAGE("faces crossed " << faces << ", edges crossed " << edges);
+        CHECK(faces > 100);
+        if (grid) CHECK(edges > 100);  // scattered points put no edge in a segment's plane
     }
 }

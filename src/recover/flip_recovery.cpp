@@ -10,9 +10,8 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/failed_rings.hpp"
 #include "mesh/flips.hpp"
-#include "mesh/key_table.hpp"
-#include "mesh/slot_marks.hpp"
 #include "recover/failed_searches.hpp"
+#include "recover/segment_crossings.hpp"
 #include "recover/segment_walk.hpp"
 
 namespace cbr::recover {
@@ -96,11 +95,6 @@ static_assert(kSearches[std::size(kSearches) - 1].depth <= FailedSearches::kMaxD
 constexpr std::size_t kMaxSearchedTets = 4096;
 // Passes over the faces still missing (recover_by_flips).
 constexpr int kMaxPasses = 3;
-
-std::uint64_t edge_key(VertexId a, VertexId b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
-}
 
 class FlipRecovery {
 public:
@@ -255,69 +249,13 @@ private:
     // at the ends need not (flat CAD facets, e.g. a disk cap fanned from
     // one rim vertex over a Delaunay mesh whose in-plane edges are another
     // triangulation). In 3D nothing guarantees one works; this only widens
-    // the search. The tetrahedra the closed segment meets are searched from
-    // u's ball outwards, and every crossing — a face or an edge crossed in
-    // its interior — is tried in that order.
+    // the search. Every crossing of the segment (SegmentCrossings: from
+    // u's ball outwards) is tried in turn.
     bool remove_any_crossing(VertexId u, VertexId w) {
-        const double* pu = m_.point(u);
-        const double* pw = m_.point(w);
-        // Members, cleared: this runs for every step of every wide edge.
-        std::vector<TetId>& near = near_;
-        std::vector<Crossing>& crossings = crossings_;
-        crossings.clear();
-        tried_edges_.clear();
-        if (!mesh::ball(m_, u, incident_[u], near)) return false;
-        mesh::SlotMarks& seen = seen_;
-        seen.new_round(m_.slot_count());
-        for (TetId t : near) seen.set(t, kSeen);
-        for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
-            const TetId t = near[i];
-            if (m_.is_ghost(t)) continue;
-            const VertexId* v = m_.vertices(t);
-            for (int f = 0; f < 4; ++f) {
-                const int* k = kFaceVertices[f];
-                const VertexId a = v[k[0]], b = v[k[1]], c = v[k[2]];
-                const geom::SegTriKind kind = classify_segment_face(m_, u, w, a, b, c);
-                if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
-                if (kind == geom::SegTriKind::CrossInterior) {
-                    Crossing face{};
-                    face.kind = Crossing::kFace;
-                    face.tet = t;
-                    face.face = f;
-                    crossings.push_back(face);
-                }
-                const TetId n = mesh::facet_tet(m_.neighbor(t, f));
-                if (!seen.has(n, kSeen)) {
-                    seen.set(n, kSeen);
-                    near.push_back(n);
-                }
-            }
-            for (int i0 = 0; i0 < 4; ++i0)
-                for (int i1 = i0 + 1; i1 < 4; ++i1) {
-                    const VertexId x = v[i0], y = v[i1];
-                    if (x == u || x == w || y == u || y == w) continue;
-                    bool& tried = tried_edges_[edge_key(x, y)];
-                    if (tried) continue;
-                    tried = true;
-                    if (crosses_in_interior(pu, pw, m_.point(x), m_.point(y))) {
-                        Crossing edge{};
-                        edge.kind = Crossing::kEdge;
-                        edge.tet = t;
-                        edge.x = x;
-                        edge.y = y;
-                        crossings.push_back(edge);
-                    }
-                }
-        }
-        for (const Crossing& c : crossings)  // remove_crossing never searches: the members stay put
+        if (!crossings_.find(m_, u, incident_[u], w, kMaxSearchedTets)) return false;
+        for (const Crossing& c : crossings_.crossings())  // remove_crossing never searches: the list stays put
             if (remove_crossing(c)) return true;
         return false;
-    }
-
-    // Segment xy crosses segment pq at one point interior to both.
-    static bool crosses_in_interior(const double* p, const double* q, const double* x, const double* y) {
-        if (geom::orient3d(p, q, x, y) != 0 || geom::collinear(p, q, x) || geom::collinear(p, q, y)) return false;
-        return geom::classify_coplanar_segments(p, q, x, y) == geom::SegSegKind::Point;
     }
 
     // Face abc, its edges present: present already, or remove a mesh edge
@@ -480,11 +418,7 @@ private:
     mesh::Shell shell_;
     std::vector<mesh::Shell> shells_;
     std::vector<std::vector<std::size_t>> orders_;  // per nesting level, as shells_: the ring positions to try
-    std::vector<TetId> near_;
-    static constexpr std::uint8_t kSeen = 1u << 0;
-    mesh::SlotMarks seen_;  // kSeen: the tetrahedra in near_
-    std::vector<Crossing> crossings_;
-    mesh::KeyTable<bool> tried_edges_;
+    SegmentCrossings crossings_;  // remove_any_crossing's
     // worth_retrying: per vertex, the last attempt that left new tetrahedra
     // at it; per face, its last attempt (0: none).
     std::vector<VertexId> touched_;
