@@ -16,6 +16,7 @@
 #include "recover/recovery.hpp"
 #include "recover/regions.hpp"
 #include "recover/segment_crossings.hpp"
+#include "recover/segment_search.hpp"
 #include "recover/segment_walk.hpp"
 #include "geom/point_in_triangle.hpp"
 #include "mesh/mesh_check.hpp"
@@ -445,11 +446,84 @@ std::vector<Crossing> crossings_the_plain_way(const TetMesh& m, VertexId u, TetI
     return out;
 }
 
+// SegmentSearch written the plain way: each face classified from every
+// side. The tetrahedra searched in order, each with its face bits.
+std::vector<std::pair<TetId, unsigned>> search_the_plain_way(const TetMesh& m, VertexId u, TetId start, VertexId w,
+                                                             bool through_constraints, std::size_t max_tets) {
+    using cbr::recover::SegmentSearch;
+    std::vector<std::pair<TetId, unsigned>> out;
+    std::vector<TetId> near;
+    if (!cbr::mesh::ball(m, u, start, near)) return out;
+    std::set<TetId> seen(near.begin(), near.end());
+    for (std::size_t i = 0; i < near.size() && near.size() < max_tets; ++i) {
+        const TetId t = near[i];
+        if (m.is_ghost(t)) continue;
+        const VertexId* v = m.vertices(t);
+        unsigned bits = 0;
+        for (int f = 0; f < 4; ++f) {
+            const int* k = cbr::mesh::kFaceVertices[f];
+            const auto kind = cbr::recover::classify_segment_face(m, u, w, v[k[0]], v[k[1]], v[k[2]]);
+            if (kind == cbr::geom::SegTriKind::Disjoint || kind == cbr::geom::SegTriKind::EndpointVertex) continue;
+            bits |= unsigned{SegmentSearch::kMeets} << (2 * f);
+            if (kind == cbr::geom::SegTriKind::CrossInterior) bits |= unsigned{SegmentSearch::kCrossesInterior} << (2 * f);
+            if (!through_constraints && m.is_constrained(t, f)) continue;
+            const TetId n = cbr::mesh::facet_tet(m.neighbor(t, f));
+            if (seen.insert(n).second) near.push_back(n);
+        }
+        out.push_back({t, bits});
+    }
+    return out;
+}
+
 bool same_crossing(const Crossing& a, const Crossing& b) {
     return a.kind == b.kind && a.tet == b.tet && a.face == b.face && a.x == b.x && a.y == b.y;
 }
 
 }  // namespace
+
+// SegmentSearch reads a face's bits from the side searched first: the
+// tetrahedra it visits, their order and their bits must be the plain
+// search's, across constraint faces or stopping at them (a random tenth
+// of the faces marked), capped or not. One searcher for every segment.
+TEST_CASE("SegmentSearch visits what the plain search visits, with the same face bits") {
+    cbr::recover::SegmentSearch search;
+    for (const bool grid : {true, false}) {
+        CAPTURE(grid);
+        TetMesh m = cbr::test::delaunay_mesh(grid ? cbr::test::grid_points(5) : cbr::test::random_points(150, 53));
+        std::mt19937_64 rng(grid ? 13 : 14);
+        for (TetId t = 0; t < m.slot_count(); ++t)
+            for (int f = 0; f < 4; ++f)
+                if (!m.is_free(t) && rng() % 10 == 0) {
+                    const cbr::mesh::FacetRef r = m.neighbor(t, f);
+                    m.set_constrained(t, f, true);
+                    m.set_constrained(cbr::mesh::facet_tet(r), cbr::mesh::facet_face(r), true);
+                }
+        const std::vector<TetId> incident = cbr::mesh::incident_tets(m);
+        const VertexId n = static_cast<VertexId>(m.vertex_count());
+        std::size_t visited = 0, stopped_short = 0;
+        for (int pair = 0; pair < 400; ++pair) {
+            const VertexId u = static_cast<VertexId>(rng() % n);
+            VertexId w = static_cast<VertexId>(rng() % n);
+            if (w == u) w = (w + 1) % n;
+            const bool through = pair % 2 == 0;
+            const std::size_t cap = pair % 3 == 0 ? 12 : 4096;
+            CAPTURE(u);
+            CAPTURE(w);
+            CAPTURE(through);
+            CAPTURE(cap);
+            const auto expected = search_the_plain_way(m, u, incident[u], w, through, cap);
+            std::vector<std::pair<TetId, unsigned>> got;
+            REQUIRE(search.run(m, u, incident[u], w, {through, cap},
+                               [&](TetId t, cbr::recover::SegmentSearch::FaceBits bits) { got.push_back({t, bits}); }));
+            CHECK(got == expected);
+            visited += got.size();
+            if (!through && got.size() < search_the_plain_way(m, u, incident[u], w, true, cap).size()) ++stopped_short;
+        }
+        MESSAGE("tetrahedra visited " << visited << ", searches cut by a constraint face " << stopped_short);
+        CHECK(visited > 1000);
+        CHECK(stopped_short > 10);  // the marks do stop searches
+    }
+}
 
 // SegmentCrossings classifies a face shared by two tetrahedra once and
 // tests an edge only where both faces of the tetrahedron that hold it meet

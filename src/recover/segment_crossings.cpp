@@ -4,12 +4,10 @@
 
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
-#include "mesh/ball_shell.hpp"
 
 namespace cbr::recover {
 namespace {
 
-using mesh::kFaceVertices;
 using mesh::TetId;
 using mesh::VertexId;
 
@@ -35,75 +33,48 @@ constexpr int kOtherCorners[4][4][2] = {
 
 }  // namespace
 
-std::uint8_t SegmentCrossings::face_bits(const mesh::TetMesh& m, VertexId u, VertexId w, TetId t, int f) const {
-    // A face whose other side was searched already was classified there:
-    // the kind is the segment's and the triangle's, whichever side asks.
-    const mesh::FacetRef across = m.neighbor(t, f);
-    const TetId n = mesh::facet_tet(across);
-    if (marks_.has(n, kSearched)) return (face_bits_[n] >> (2 * mesh::facet_face(across))) & 3u;
-    const int* k = kFaceVertices[f];
-    const VertexId* v = m.vertices(t);
-    const geom::SegTriKind kind = classify_segment_face(m, u, w, v[k[0]], v[k[1]], v[k[2]]);
-    if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) return 0;
-    return kind == geom::SegTriKind::CrossInterior ? kMeets | kCrossesInterior : kMeets;
-}
-
 bool SegmentCrossings::find(const mesh::TetMesh& m, VertexId u, TetId start, VertexId w, std::size_t max_tets) {
     crossings_.clear();
     tried_edges_.clear();
-    if (!mesh::ball(m, u, start, near_)) return false;
-    marks_.new_round(m.slot_count());
-    if (face_bits_.size() < m.slot_count()) face_bits_.resize(m.slot_count());
-    for (TetId t : near_) marks_.set(t, kSeen);
-    const double* pu = m.point(u);
-    const double* pw = m.point(w);
-    for (std::size_t i = 0; i < near_.size() && near_.size() < max_tets; ++i) {
-        const TetId t = near_[i];
-        if (m.is_ghost(t)) continue;
-        std::uint8_t bits[4];
-        for (int f = 0; f < 4; ++f) {
-            bits[f] = face_bits(m, u, w, t, f);
-            if (!(bits[f] & kMeets)) continue;
-            if (bits[f] & kCrossesInterior) {
-                Crossing face{};
-                face.kind = Crossing::kFace;
-                face.tet = t;
-                face.face = f;
-                crossings_.push_back(face);
-            }
-            const TetId n = mesh::facet_tet(m.neighbor(t, f));
-            if (!marks_.has(n, kSeen)) {
-                marks_.set(n, kSeen);
-                near_.push_back(n);
+    return search_.run(m, u, start, w, {true, max_tets},
+                       [&](TetId t, SegmentSearch::FaceBits bits) { add_crossings(m, u, w, t, bits); });
+}
+
+void SegmentCrossings::add_crossings(const mesh::TetMesh& m, VertexId u, VertexId w, TetId t,
+                                     SegmentSearch::FaceBits bits) {
+    for (int f = 0; f < 4; ++f)
+        if (SegmentSearch::face(bits, f) & SegmentSearch::kCrossesInterior) {
+            Crossing face{};
+            face.kind = Crossing::kFace;
+            face.tet = t;
+            face.face = f;
+            crossings_.push_back(face);
+        }
+    const VertexId* v = m.vertices(t);
+    for (int i0 = 0; i0 < 4; ++i0)
+        for (int i1 = i0 + 1; i1 < 4; ++i1) {
+            const VertexId x = v[i0], y = v[i1];
+            if (x == u || x == w || y == u || y == w) continue;
+            // A point of xy interior to uw lies on both faces that hold xy,
+            // and is neither u nor w: a face the segment does not meet
+            // there rules the edge out, here and in any other tetrahedron,
+            // without the exact tests.
+            const int* faces = kOtherCorners[i0][i1];
+            if (!(SegmentSearch::face(bits, faces[0]) & SegmentSearch::kMeets) ||
+                !(SegmentSearch::face(bits, faces[1]) & SegmentSearch::kMeets))
+                continue;
+            bool& tried = tried_edges_[edge_key(x, y)];
+            if (tried) continue;
+            tried = true;
+            if (crosses_in_interior(m.point(u), m.point(w), m.point(x), m.point(y))) {
+                Crossing edge{};
+                edge.kind = Crossing::kEdge;
+                edge.tet = t;
+                edge.x = x;
+                edge.y = y;
+                crossings_.push_back(edge);
             }
         }
-        face_bits_[t] = static_cast<std::uint8_t>(bits[0] | bits[1] << 2 | bits[2] << 4 | bits[3] << 6);
-        marks_.set(t, kSearched);
-        const VertexId* v = m.vertices(t);
-        for (int i0 = 0; i0 < 4; ++i0)
-            for (int i1 = i0 + 1; i1 < 4; ++i1) {
-                const VertexId x = v[i0], y = v[i1];
-                if (x == u || x == w || y == u || y == w) continue;
-                // A point of xy interior to uw lies on both faces that hold
-                // xy, and is neither u nor w: a face the segment does not
-                // meet there rules the edge out, here and in any other
-                // tetrahedron, without the exact tests.
-                const int* faces = kOtherCorners[i0][i1];
-                if (!(bits[faces[0]] & kMeets) || !(bits[faces[1]] & kMeets)) continue;
-                bool& tried = tried_edges_[edge_key(x, y)];
-                if (tried) continue;
-                tried = true;
-                if (crosses_in_interior(pu, pw, m.point(x), m.point(y))) {
-                    Crossing edge{};
-                    edge.kind = Crossing::kEdge;
-                    edge.tet = t;
-                    edge.x = x;
-                    edge.y = y;
-                    crossings_.push_back(edge);
-                }
-            }
-    }
-    return true;
 }
 
 }  // namespace cbr::recover

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <utility>
 
-#include "geom/intersect.hpp"
 #include "geom/point_in_triangle.hpp"
 #include "geom/predicates.hpp"
 #include "geom/triangle_distance.hpp"
@@ -12,7 +11,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/slot_marks.hpp"
 #include "recover/protected_insertion.hpp"
-#include "recover/segment_walk.hpp"
+#include "recover/segment_search.hpp"
 
 namespace cbr::recover {
 namespace {
@@ -115,40 +114,21 @@ private:
     bool edge_exists(VertexId a, VertexId b) const { return mesh::find_edge_tet(m_, a, incident_[a], b) != kNoTet; }
 
     // The finite tetrahedra the closed segment ab meets other than at a or b
-    // (from a's ball outwards, never across a constraint face), nearest
-    // `target` first (nullptr: in the order found, d2 0; for a count).
+    // (SegmentSearch from a's ball, never across a constraint face),
+    // nearest `target` first (nullptr: in the order found, d2 0; for a count).
     std::vector<Met> met_tets(VertexId a, VertexId b, const double* target) {
         std::vector<Met> out;
-        std::vector<TetId> near;
-        if (!mesh::ball(m_, a, incident_[a], near)) return out;
-        marks_.new_round(m_.slot_count());
-        for (TetId t : near) marks_.set(t, kSeen);
-        for (std::size_t i = 0; i < near.size() && near.size() < kMaxSearchedTets; ++i) {
-            const TetId t = near[i];
-            if (m_.is_ghost(t)) continue;
-            const VertexId* v = m_.vertices(t);
-            bool met = false;
-            for (int f = 0; f < 4; ++f) {
-                const int* k = kFaceVertices[f];
-                const geom::SegTriKind kind = classify_segment_face(m_, a, b, v[k[0]], v[k[1]], v[k[2]]);
-                if (kind == geom::SegTriKind::Disjoint || kind == geom::SegTriKind::EndpointVertex) continue;
-                met = true;
-                if (m_.is_constrained(t, f)) continue;
-                const TetId n = mesh::facet_tet(m_.neighbor(t, f));
-                if (marks_.has(n, kSeen)) continue;
-                marks_.set(n, kSeen);
-                near.push_back(n);
-            }
-            if (!met) continue;
+        search_.run(m_, a, incident_[a], b, {false, kMaxSearchedTets}, [&](TetId t, SegmentSearch::FaceBits bits) {
+            if (bits == 0) return;  // no face met
             if (target == nullptr) {
                 out.push_back({0, t});
-                continue;
+                return;
             }
             double c[3];
             centroid(m_, t, c);
             const double d[3] = {c[0] - target[0], c[1] - target[1], c[2] - target[2]};
             out.push_back({dot(d, d), t});
-        }
+        });
         if (target == nullptr) return out;
         // Ties by id: the order is then a function of the mesh alone, not of
         // the walk from incident_[a], so that a list kept across points
@@ -339,8 +319,9 @@ private:
     std::vector<Box> boxes_;  // of the missing triangles, in missing_'s order
     std::vector<TetId> incident_;
     ProtectedInserter inserter_;
-    // Scratch of met_tets and conflicts_reach: tetrahedra reached (kSeen)
-    // and, in conflicts_reach, those the segment meets (kWanted).
+    SegmentSearch search_;  // met_tets'
+    // Scratch of conflicts_reach: tetrahedra reached (kSeen) and those the
+    // segment meets (kWanted).
     static constexpr std::uint8_t kSeen = 1u << 0;
     static constexpr std::uint8_t kWanted = 1u << 1;
     mesh::SlotMarks marks_;
