@@ -48,6 +48,7 @@ using cbr::recover::PointSplitting;
 using cbr::recover::SurfacePoints;
 using cbr::recover::Triangle;
 using cbr::recover::kMaxOptimalPolygon;
+using cbr::recover::chord_is_clear;
 using cbr::recover::triangulate_polygon;
 using cbr::recover::triangulate_polygon_by_ears;
 
@@ -622,6 +623,53 @@ TEST_CASE("triangulate_polygon: every simple polygon on a small integer grid (co
         check_triangulation(rev, -1, triangulate_polygon_by_ears(ptrs(rev), pr, -1));
     }
     CHECK(simple_count == 3000);
+}
+
+// chord_is_clear against its definition, checked the plain way on small
+// integer coordinates (every product exact): no polygon vertex strictly
+// inside the chord, no polygon edge away from its ends crossing it at a
+// point interior to both. Loops need not be simple; on a 5 x 5 grid many
+// vertices lie on chords and many edges touch them at an end. Loops of
+// more than kMaxOptimalPolygon vertices too (another buffer).
+TEST_CASE("chord_is_clear: no vertex inside the chord, no edge across it") {
+    std::mt19937_64 rng(29);
+    std::uniform_int_distribution<int> G(-2, 2);
+    const Projection pr{0, 1};
+    const auto on_open_segment = [](const P2& p, const P2& q, const P2& v) {
+        const double cross = (q[0] - p[0]) * (v[1] - p[1]) - (q[1] - p[1]) * (v[0] - p[0]);
+        const double along = (v[0] - p[0]) * (q[0] - p[0]) + (v[1] - p[1]) * (q[1] - p[1]);
+        const double length2 = (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]);
+        return cross == 0 && along > 0 && along < length2;
+    };
+    int clear = 0, blocked_by_vertex = 0, blocked_by_edge = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = trial % 50 == 0 ? kMaxOptimalPolygon + 6 : 4 + trial % 7;
+        std::vector<P2> loop;
+        for (int i = 0; i < n; ++i) loop.push_back({double(G(rng)), double(G(rng)), 0.0});
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                if (i == j || (i + 1) % n == j || (j + 1) % n == i || loop[i] == loop[j]) continue;
+                bool vertex_inside = false, edge_across = false;
+                for (int x = 0; x < n; ++x) {
+                    if (x != i && x != j && on_open_segment(loop[i], loop[j], loop[x])) vertex_inside = true;
+                    const int y = (x + 1) % n;
+                    if (x != i && x != j && y != i && y != j &&
+                        cross2d(loop[i].data(), loop[j].data(), loop[x].data(), loop[y].data()))
+                        edge_across = true;
+                }
+                const bool expected = !vertex_inside && !edge_across;
+                INFO("trial " << trial << " chord " << i << " " << j);
+                CHECK(chord_is_clear(ptrs(loop), pr, i, j) == expected);
+                clear += expected;
+                blocked_by_vertex += vertex_inside;
+                blocked_by_edge += edge_across && !vertex_inside;
+            }
+    }
+    MESSAGE("clear " << clear << ", a vertex inside " << blocked_by_vertex << ", only an edge across "
+                     << blocked_by_edge);
+    CHECK(clear > 1000);
+    CHECK(blocked_by_vertex > 1000);
+    CHECK(blocked_by_edge > 1000);
 }
 
 TEST_CASE("triangulate_polygon: large fans go to ear clipping, which keeps every condition") {

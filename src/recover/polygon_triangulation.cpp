@@ -30,31 +30,34 @@ bool between(geom::Projection pr, const double* p, const double* q, const double
     return (p[a] < v[a] && v[a] < q[a]) || (q[a] < v[a] && v[a] < p[a]);
 }
 
-// Open segments pq and rs cross at one point interior to both (2D, exact).
-bool segments_cross(geom::Projection pr, const double* p, const double* q, const double* r, const double* s) {
-    const int a = geom::orient2d(pr, p, q, r), b = geom::orient2d(pr, p, q, s);
-    const int c = geom::orient2d(pr, r, s, p), d = geom::orient2d(pr, r, s, q);
-    return a * b < 0 && c * d < 0;
-}
+}  // namespace
 
-// Chord ij of the loop (not a polygon edge) crosses no polygon edge and
-// holds no polygon vertex in its interior (2D, exact).
+// The side of line ij each vertex is on is found once (it serves the
+// vertex and both edges at it); an edge whose ends are on opposite sides
+// then crosses the chord when the chord's ends are on opposite sides of
+// the edge.
 bool chord_is_clear(const std::vector<const double*>& loop, geom::Projection pr, int i, int j) {
     const int n = static_cast<int>(loop.size());
     const double* p = loop[i];
     const double* q = loop[j];
+    int small[kMaxOptimalPolygon];
+    std::vector<int> large;
+    int* side = small;
+    if (n > kMaxOptimalPolygon) {
+        large.resize(static_cast<std::size_t>(n));
+        side = large.data();
+    }
+    for (int x = 0; x < n; ++x) side[x] = x == i || x == j ? 0 : geom::orient2d(pr, p, q, loop[x]);
     for (int x = 0; x < n; ++x) {
         if (x == i || x == j) continue;
         const double* v = loop[x];
-        if (geom::orient2d(pr, p, q, v) == 0 && between(pr, p, q, v)) return false;
+        if (side[x] == 0 && between(pr, p, q, v)) return false;
         const int y = (x + 1) % n;
-        if (y == i || y == j) continue;
-        if (segments_cross(pr, p, q, v, loop[y])) return false;
+        if (y == i || y == j || side[x] * side[y] >= 0) continue;
+        if (geom::orient2d(pr, v, loop[y], p) * geom::orient2d(pr, v, loop[y], q) < 0) return false;
     }
     return true;
 }
-
-}  // namespace
 
 std::vector<std::array<int, 3>> triangulate_polygon_by_ears(const std::vector<const double*>& loop,
                                                             geom::Projection pr, int turn, const FlatTriangle& flat) {

@@ -29,6 +29,12 @@ using FlatTriangle = std::function<bool(int, int, int)>;
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<const double*>& loop, geom::Projection pr,
                                                     int turn, const FlatTriangle& flat = {});
 
+// Whether chord ij of `loop` (0 <= i, j < loop.size(), not a polygon
+// edge) crosses no polygon edge at a point interior to both and holds no
+// polygon vertex in its interior, seen through `pr` (exact): the sides a
+// triangle of triangulate_polygon may have.
+bool chord_is_clear(const std::vector<const double*>& loop, geom::Projection pr, int i, int j);
+
 // Polygons up to this size get the optimal triangulation; the feeder
 // body's conforming recovery made fans of up to 922 vertices, whose
 // O(n^3) search took most of a 40-second recovery.
