@@ -36,7 +36,8 @@ constexpr int kOtherCorners[4][4][2] = {
 bool SegmentCrossings::find(const mesh::TetMesh& m, VertexId u, TetId start, VertexId w, std::size_t max_tets) {
     crossings_.clear();
     tried_edges_.clear();
-    return search_.run(m, u, start, w, {true, max_tets},
+    const SegmentSearch::Limits through_everything{true, max_tets};
+    return search_.run(m, u, start, w, through_everything,
                        [&](TetId t, SegmentSearch::FaceBits bits) { add_crossings(m, u, w, t, bits); });
 }
 

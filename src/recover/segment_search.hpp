@@ -19,8 +19,12 @@ class SegmentSearch {
 public:
     // What the segment does at one face of a searched tetrahedron (two
     // bits per face in FaceBits, face f at bits 2f and 2f + 1).
-    static constexpr std::uint8_t kMeets = 1;            // meets it other than at u or w
-    static constexpr std::uint8_t kCrossesInterior = 2;  // crosses its interior
+    // kMeets: the closed segment and the closed face have a common point,
+    // other than an end of the segment that is a corner of the face
+    // (classify_segment_face neither Disjoint nor EndpointVertex).
+    // kCrossesInterior: a proper crossing of the face (CrossInterior).
+    static constexpr std::uint8_t kMeets = 1;
+    static constexpr std::uint8_t kCrossesInterior = 2;
     using FaceBits = std::uint8_t;
     static std::uint8_t face(FaceBits bits, int f) { return (bits >> (2 * f)) & 3u; }
 

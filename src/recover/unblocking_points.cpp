@@ -118,7 +118,8 @@ private:
     // nearest `target` first (nullptr: in the order found, d2 0; for a count).
     std::vector<Met> met_tets(VertexId a, VertexId b, const double* target) {
         std::vector<Met> out;
-        search_.run(m_, a, incident_[a], b, {false, kMaxSearchedTets}, [&](TetId t, SegmentSearch::FaceBits bits) {
+        const SegmentSearch::Limits up_to_constraints{false, kMaxSearchedTets};
+        search_.run(m_, a, incident_[a], b, up_to_constraints, [&](TetId t, SegmentSearch::FaceBits bits) {
             if (bits == 0) return;  // no face met
             if (target == nullptr) {
                 out.push_back({0, t});
