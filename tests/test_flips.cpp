@@ -1164,6 +1164,91 @@ std::vector<TetMesh> reachable(const TetMesh& start, const EdgeProtect& protect)
 
 }  // namespace
 
+namespace {
+
+// Every triangulation of the polygon i..j of a ring (closed by chord ij),
+// as triangle lists, written out one by one.
+void all_ring_triangulations(int i, int j, std::vector<std::vector<RingTriangle>>& out) {
+    out.clear();
+    if (j - i < 2) {
+        out.push_back({});
+        return;
+    }
+    for (int k = i + 1; k < j; ++k) {
+        std::vector<std::vector<RingTriangle>> left, right;
+        all_ring_triangulations(i, k, left);
+        all_ring_triangulations(k, j, right);
+        for (const auto& l : left)
+            for (const auto& r : right) {
+                std::vector<RingTriangle> t = l;
+                t.insert(t.end(), r.begin(), r.end());
+                t.push_back({i, k, j});
+                out.push_back(t);
+            }
+    }
+}
+
+// How many triangulations of the shell's ring cone only positively
+// oriented tetrahedra (exact), counted one by one (finite rings only).
+int valid_ring_triangulations(const TetMesh& m, VertexId u, VertexId v, const Shell& s) {
+    std::vector<std::vector<RingTriangle>> all;
+    all_ring_triangulations(0, static_cast<int>(s.size()) - 1, all);
+    int valid = 0;
+    for (const auto& t : all) {
+        bool ok = true;
+        for (const RingTriangle& r : t) {
+            const double* a = m.point(s.ring[static_cast<std::size_t>(r[0])]);
+            const double* b = m.point(s.ring[static_cast<std::size_t>(r[1])]);
+            const double* c = m.point(s.ring[static_cast<std::size_t>(r[2])]);
+            ok = ok && cbr::geom::orient3d(a, b, c, m.point(v)) > 0 && cbr::geom::orient3d(a, c, b, m.point(u)) > 0;
+        }
+        valid += ok;
+    }
+    return valid;
+}
+
+}  // namespace
+
+// A ring with exactly one valid triangulation gets it without a ranking
+// (best_ring_triangulation's shortcut, taken when no minimum quality is
+// asked for): on random shells of a scattered and a grid mesh, the
+// triangles must be those of the ranked search (asked for its minimum, so
+// it ranks), in the same order, whether the ring has no valid
+// triangulation, one, or several (counted one by one).
+TEST_CASE("best_ring_triangulation: a ring's only triangulation, taken unranked, is the ranked one") {
+    const auto [scattered, flat] = replacement_test_meshes(31, 37, 1000000);
+    Rng rng(59);
+    std::map<int, int> by_count;  // valid triangulations (2: two or more) -> shells
+    for (const TetMesh* m : {&scattered, &flat}) {
+        for (int trial = 0; trial < 4000; ++trial) {
+            const TetId t = random_live(*m, rng);
+            const int i = static_cast<int>(rng() % 4), j = (i + 1 + static_cast<int>(rng() % 3)) % 4;
+            const VertexId u = m->vertex(t, i), v = m->vertex(t, j);
+            if (u == kGhostVertex || v == kGhostVertex) continue;
+            Shell s;
+            REQUIRE(shell(*m, u, v, t, s));
+            if (s.size() < 3 || s.size() > 9 ||
+                std::find(s.ring.begin(), s.ring.end(), kGhostVertex) != s.ring.end())
+                continue;
+            std::vector<RingTriangle> unranked, ranked;
+            double q = 0;
+            const bool found = best_ring_triangulation(*m, u, v, s, unranked);
+            const bool found_ranked = best_ring_triangulation(*m, u, v, s, ranked, &q);
+            CAPTURE(trial);
+            CHECK(found == found_ranked);
+            CHECK(unranked == ranked);
+            const int valid = valid_ring_triangulations(*m, u, v, s);
+            CHECK(found == (valid > 0));
+            ++by_count[std::min(valid, 2)];
+        }
+    }
+    MESSAGE("shells with no valid triangulation " << by_count[0] << ", one " << by_count[1] << ", several "
+                                                 << by_count[2]);
+    CHECK(by_count[0] > 100);
+    CHECK(by_count[1] > 100);
+    CHECK(by_count[2] > 100);
+}
+
 TEST_CASE("Schonhardt's twisted prism: no flip sequence recovers its three reflex diagonals") {
     // The convex hull of the six points has 12 edges; the three other pairs
     // are the diagonals i - (3 + (i+1) mod 3) of the lateral quadrilaterals

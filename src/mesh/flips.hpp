@@ -125,7 +125,9 @@ double tet_quality(const double* a, const double* b, const double* c, const doub
 
 // What best_ring_triangulation maximizes: the minimum of `measure` over the
 // finite tetrahedra a triangulation cones (a measure is -infinity for a
-// tetrahedron that is not positively oriented, exact), counting only
+// tetrahedron that is not positively oriented, exact, and above it for
+// every other: a ring with one valid triangulation gets it without its
+// measure when nothing else is asked), counting only
 // triangulations whose minimum is strictly above `floor`. A caller that
 // will refuse anything not above a bar gives it as the floor: every
 // sub-polygon whose best falls to it is dropped at once, so a ring that
