@@ -98,7 +98,7 @@ struct RingDp {
     std::vector<char> possible;               // triangulable(): (i, j) has a valid triangulation
     std::vector<int> first;                   // triangulable(): where possible, the first apex that works
     std::vector<VertexId> finite;             // RingScorer's storage
-    std::vector<std::pair<int, int>> todo;    // extract's storage
+    std::vector<std::pair<int, int>> todo;    // each_triangle()'s storage
     // Reuses the tables' storage (the caller keeps one RingDp per thread).
     void reset(std::size_t size) {
         n = size;
@@ -148,6 +148,25 @@ bool triangulable(RingDp& dp, const RingScorer& score) {
     return ok(0, n - 1);
 }
 
+// The triangles of the triangulation whose sub-polygon (i, j) has apex
+// apexes[i n + j] (solve()'s split, or triangulable()'s first), from the
+// root down, as visit(i, k, j) until it returns false (then false).
+template <typename Visit>
+bool each_triangle(RingDp& dp, const std::vector<int>& apexes, Visit visit) {
+    std::vector<std::pair<int, int>>& todo = dp.todo;
+    todo.assign(1, {0, static_cast<int>(dp.n) - 1});
+    while (!todo.empty()) {
+        const auto [i, j] = todo.back();
+        todo.pop_back();
+        if (j - i < 2) continue;
+        const int k = apexes[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)];
+        if (!visit(i, k, j)) return false;
+        todo.push_back({i, k});
+        todo.push_back({k, j});
+    }
+    return true;
+}
+
 // After triangulable(): whether the ring has exactly one valid
 // triangulation, the one of the first apexes. It has another exactly when
 // some sub-polygon of that one, (i, j) with first apex k, has a later apex
@@ -161,19 +180,11 @@ bool only_triangulation(RingDp& dp, const RingScorer& score) {
     const auto ok = [&dp](int i, int j) {
         return dp.possible[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)] != 0;
     };
-    std::vector<std::pair<int, int>>& todo = dp.todo;
-    todo.assign(1, {0, static_cast<int>(dp.n) - 1});
-    while (!todo.empty()) {
-        const auto [i, j] = todo.back();
-        todo.pop_back();
-        if (j - i < 2) continue;
-        const int apex = dp.first[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)];
+    return each_triangle(dp, dp.first, [&](int i, int apex, int j) {
         for (int k = apex + 1; k < j; ++k)
             if (ok(i, k) && ok(k, j) && score.valid(i, k, j)) return false;
-        todo.push_back({i, apex});
-        todo.push_back({apex, j});
-    }
-    return true;
+        return true;
+    });
 }
 
 // With a floor, a sub-polygon whose best is not above it counts as -inf:
@@ -208,21 +219,12 @@ void solve(RingDp& dp, const RingScorer& score, const RingObjective& objective, 
     }
 }
 
-// The triangulation whose sub-polygon (i, j) has apex apexes[i n + j]
-// (solve()'s split, or triangulable()'s first).
 void extract(RingDp& dp, const std::vector<int>& apexes, std::vector<RingTriangle>& triangles) {
     triangles.clear();
-    std::vector<std::pair<int, int>>& todo = dp.todo;
-    todo.assign(1, {0, static_cast<int>(dp.n) - 1});
-    while (!todo.empty()) {
-        const auto [i, j] = todo.back();
-        todo.pop_back();
-        if (j - i < 2) continue;
-        const int k = apexes[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)];
+    each_triangle(dp, apexes, [&triangles](int i, int k, int j) {
         triangles.push_back({i, k, j});
-        todo.push_back({i, k});
-        todo.push_back({k, j});
-    }
+        return true;
+    });
 }
 
 }  // namespace
