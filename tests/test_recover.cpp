@@ -394,58 +394,6 @@ namespace {
 
 using cbr::recover::Crossing;
 
-// SegmentCrossings' search written the plain way: every face of every
-// tetrahedron found classified (a shared face twice, once from each side),
-// every edge tested the first time it is met.
-std::vector<Crossing> crossings_the_plain_way(const TetMesh& m, VertexId u, TetId start, VertexId w,
-                                              std::size_t max_tets) {
-    std::vector<Crossing> out;
-    std::vector<TetId> near;
-    if (!cbr::mesh::ball(m, u, start, near)) return out;
-    std::set<TetId> seen(near.begin(), near.end());
-    std::set<std::pair<VertexId, VertexId>> tried;
-    const double* pu = m.point(u);
-    const double* pw = m.point(w);
-    for (std::size_t i = 0; i < near.size() && near.size() < max_tets; ++i) {
-        const TetId t = near[i];
-        if (m.is_ghost(t)) continue;
-        const VertexId* v = m.vertices(t);
-        for (int f = 0; f < 4; ++f) {
-            const int* k = cbr::mesh::kFaceVertices[f];
-            const auto kind = cbr::recover::classify_segment_face(m, u, w, v[k[0]], v[k[1]], v[k[2]]);
-            if (kind == cbr::geom::SegTriKind::Disjoint || kind == cbr::geom::SegTriKind::EndpointVertex) continue;
-            if (kind == cbr::geom::SegTriKind::CrossInterior) {
-                Crossing c{};
-                c.kind = Crossing::kFace;
-                c.tet = t;
-                c.face = f;
-                out.push_back(c);
-            }
-            const TetId n = cbr::mesh::facet_tet(m.neighbor(t, f));
-            if (seen.insert(n).second) near.push_back(n);
-        }
-        for (int i0 = 0; i0 < 4; ++i0)
-            for (int i1 = i0 + 1; i1 < 4; ++i1) {
-                const VertexId x = v[i0], y = v[i1];
-                if (x == u || x == w || y == u || y == w) continue;
-                if (!tried.insert({std::min(x, y), std::max(x, y)}).second) continue;
-                const double* px = m.point(x);
-                const double* py = m.point(y);
-                if (cbr::geom::orient3d(pu, pw, px, py) != 0 || cbr::geom::collinear(pu, pw, px) ||
-                    cbr::geom::collinear(pu, pw, py) ||
-                    cbr::geom::classify_coplanar_segments(pu, pw, px, py) != cbr::geom::SegSegKind::Point)
-                    continue;
-                Crossing c{};
-                c.kind = Crossing::kEdge;
-                c.tet = t;
-                c.x = x;
-                c.y = y;
-                out.push_back(c);
-            }
-    }
-    return out;
-}
-
 // SegmentSearch written the plain way: each face classified from every
 // side. The tetrahedra searched in order, each with its face bits.
 std::vector<std::pair<TetId, unsigned>> search_the_plain_way(const TetMesh& m, VertexId u, TetId start, VertexId w,
@@ -471,6 +419,48 @@ std::vector<std::pair<TetId, unsigned>> search_the_plain_way(const TetMesh& m, V
             if (seen.insert(n).second) near.push_back(n);
         }
         out.push_back({t, bits});
+    }
+    return out;
+}
+
+// SegmentCrossings written the plain way, on the plain search (through
+// constraint faces): per tetrahedron its faces crossed in their interior,
+// then every edge tested the first time it is met.
+std::vector<Crossing> crossings_the_plain_way(const TetMesh& m, VertexId u, TetId start, VertexId w,
+                                              std::size_t max_tets) {
+    using cbr::recover::SegmentSearch;
+    std::vector<Crossing> out;
+    std::set<std::pair<VertexId, VertexId>> tried;
+    const double* pu = m.point(u);
+    const double* pw = m.point(w);
+    for (const auto& [t, bits] : search_the_plain_way(m, u, start, w, true, max_tets)) {
+        for (int f = 0; f < 4; ++f)
+            if ((bits >> (2 * f)) & SegmentSearch::kCrossesInterior) {
+                Crossing c{};
+                c.kind = Crossing::kFace;
+                c.tet = t;
+                c.face = f;
+                out.push_back(c);
+            }
+        const VertexId* v = m.vertices(t);
+        for (int i0 = 0; i0 < 4; ++i0)
+            for (int i1 = i0 + 1; i1 < 4; ++i1) {
+                const VertexId x = v[i0], y = v[i1];
+                if (x == u || x == w || y == u || y == w) continue;
+                if (!tried.insert({std::min(x, y), std::max(x, y)}).second) continue;
+                const double* px = m.point(x);
+                const double* py = m.point(y);
+                if (cbr::geom::orient3d(pu, pw, px, py) != 0 || cbr::geom::collinear(pu, pw, px) ||
+                    cbr::geom::collinear(pu, pw, py) ||
+                    cbr::geom::classify_coplanar_segments(pu, pw, px, py) != cbr::geom::SegSegKind::Point)
+                    continue;
+                Crossing c{};
+                c.kind = Crossing::kEdge;
+                c.tet = t;
+                c.x = x;
+                c.y = y;
+                out.push_back(c);
+            }
     }
     return out;
 }

@@ -105,8 +105,11 @@ struct RingDp {
         best.assign(size * size, kInf);
         split.assign(size * size, -1);
     }
-    double& at(int i, int j) { return best[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
-    int& apex(int i, int j) { return split[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j)]; }
+    double& at(int i, int j) { return best[cell(i, j)]; }
+    int& apex(int i, int j) { return split[cell(i, j)]; }
+    char& feasible(int i, int j) { return possible[cell(i, j)]; }
+    int& first_apex(int i, int j) { return first[cell(i, j)]; }
+    std::size_t cell(int i, int j) const { return static_cast<std::size_t>(i) * n + static_cast<std::size_t>(j); }
 };
 
 // The calling thread's tables, kept from one search to the next. Not
@@ -129,23 +132,20 @@ struct RingDp {
 // reverted in 6910161 as within the noise, measured by three single runs.)
 bool triangulable(RingDp& dp, const RingScorer& score) {
     const int n = static_cast<int>(dp.n);
-    const auto ok = [&dp](int i, int j) -> char& {
-        return dp.possible[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)];
-    };
     dp.possible.assign(dp.n * dp.n, 0);
-    dp.first.resize(dp.n * dp.n);  // read only where possible
-    for (int i = 0; i + 1 < n; ++i) ok(i, i + 1) = 1;
+    dp.first.resize(dp.n * dp.n);  // read only where feasible
+    for (int i = 0; i + 1 < n; ++i) dp.feasible(i, i + 1) = 1;
     for (int len = 2; len < n; ++len)
         for (int i = 0; i + len < n; ++i) {
             const int j = i + len;
             for (int k = i + 1; k < j; ++k)
-                if (ok(i, k) && ok(k, j) && score.valid(i, k, j)) {
-                    ok(i, j) = 1;
-                    dp.first[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)] = k;
+                if (dp.feasible(i, k) && dp.feasible(k, j) && score.valid(i, k, j)) {
+                    dp.feasible(i, j) = 1;
+                    dp.first_apex(i, j) = k;
                     break;
                 }
         }
-    return ok(0, n - 1);
+    return dp.feasible(0, n - 1);
 }
 
 // The triangles of the triangulation whose sub-polygon (i, j) has apex
@@ -159,7 +159,7 @@ bool each_triangle(RingDp& dp, const std::vector<int>& apexes, Visit visit) {
         const auto [i, j] = todo.back();
         todo.pop_back();
         if (j - i < 2) continue;
-        const int k = apexes[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)];
+        const int k = apexes[dp.cell(i, j)];
         if (!visit(i, k, j)) return false;
         todo.push_back({i, k});
         todo.push_back({k, j});
@@ -177,12 +177,9 @@ bool each_triangle(RingDp& dp, const std::vector<int>& apexes, Visit visit) {
 // so (feeder body: of the rings with a valid triangulation, all of 143,000
 // of 3 vertices, 385,000 of 409,000 of 4, 58,000 of 71,000 of 5).
 bool only_triangulation(RingDp& dp, const RingScorer& score) {
-    const auto ok = [&dp](int i, int j) {
-        return dp.possible[static_cast<std::size_t>(i) * dp.n + static_cast<std::size_t>(j)] != 0;
-    };
     return each_triangle(dp, dp.first, [&](int i, int apex, int j) {
         for (int k = apex + 1; k < j; ++k)
-            if (ok(i, k) && ok(k, j) && score.valid(i, k, j)) return false;
+            if (dp.feasible(i, k) && dp.feasible(k, j) && score.valid(i, k, j)) return false;
         return true;
     });
 }

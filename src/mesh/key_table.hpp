@@ -13,6 +13,12 @@
 
 namespace cbr::mesh {
 
+// The key of the edge between vertices a and b, the same in either order
+// (never 0 for two different vertices).
+inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+}
+
 template <class Value>
 class KeyTable {
 public:

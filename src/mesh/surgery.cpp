@@ -5,6 +5,7 @@
 
 #include "geom/plane_side.hpp"
 #include "geom/predicates.hpp"
+#include "mesh/key_table.hpp"
 #include "mesh/slot_marks.hpp"
 
 namespace cbr::mesh {
@@ -364,11 +365,6 @@ struct EdgeSlot {
     std::uint8_t parity = 0;  // that face's orientation parity (as in FaceEntry)
     std::uint8_t count = 0;   // cone faces on this edge so far
 };
-
-std::uint64_t edge_key(VertexId a, VertexId b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
-}
 
 constexpr std::uint8_t kInOld = 1;  // ConeReplacer's mark: listed in `old`
 

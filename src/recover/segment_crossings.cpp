@@ -1,7 +1,5 @@
 #include "recover/segment_crossings.hpp"
 
-#include <utility>
-
 #include "geom/intersect.hpp"
 #include "geom/predicates.hpp"
 
@@ -10,11 +8,6 @@ namespace {
 
 using mesh::TetId;
 using mesh::VertexId;
-
-std::uint64_t edge_key(VertexId a, VertexId b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
-}
 
 // Segment xy crosses segment pq at one point interior to both.
 bool crosses_in_interior(const double* p, const double* q, const double* x, const double* y) {
@@ -64,7 +57,7 @@ void SegmentCrossings::add_crossings(const mesh::TetMesh& m, VertexId u, VertexI
             if (!(SegmentSearch::face(bits, faces[0]) & SegmentSearch::kMeets) ||
                 !(SegmentSearch::face(bits, faces[1]) & SegmentSearch::kMeets))
                 continue;
-            bool& tried = tried_edges_[edge_key(x, y)];
+            bool& tried = tried_edges_[mesh::edge_key(x, y)];
             if (tried) continue;
             tried = true;
             if (crosses_in_interior(m.point(u), m.point(w), m.point(x), m.point(y))) {

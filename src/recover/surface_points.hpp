@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
 
@@ -70,10 +71,7 @@ public:
     const ConstraintFaces& faces() const { return faces_; }
 
 private:
-    static std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t{a} << 32) | b;
-    }
+    static std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) { return mesh::edge_key(a, b); }
     struct Added {
         mesh::VertexId a = 0, b = 0;  // edge points: the input edge
         std::size_t face = npos;      // face points: the triangle; npos for edge points

@@ -87,10 +87,7 @@ public:
     }
 
 private:
-    static std::uint64_t key(VertexId a, VertexId b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t{a} << 32) | b;
-    }
+    static std::uint64_t key(VertexId a, VertexId b) { return mesh::edge_key(a, b); }
     template <typename Tets>
     void note_replaced(const Tets& tets) {
         if (log)
