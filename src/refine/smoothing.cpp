@@ -68,6 +68,7 @@ private:
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
     std::vector<double> qualities_;  // radius ratios of ball_ at the vertex's position, in ball_'s order
+    std::vector<Point> candidates_;  // smooth(): the positions tried (kept: one allocation, not four per ball)
     // rate_angles: the ball tetrahedra (indices in ball_) that held the
     // smallest angle at the last positions rated, the latest first; past
     // the ball's size where unknown (kNoSuspect: a new ball).
@@ -201,7 +202,8 @@ bool Smoother::smooth(VertexId v, const mesh::VertexBalls& balls) {
     }
     for (double& x : centroid) x /= static_cast<double>(neighbours_.size());
     mean_edge /= static_cast<double>(neighbours_.size());
-    std::vector<Point> candidates;
+    std::vector<Point>& candidates = candidates_;
+    candidates.clear();
     for (double step : {1.0, 0.5, 0.25}) {
         Point p;
         for (int k = 0; k < 3; ++k) p[k] = here[k] + step * (centroid[k] - here[k]);
