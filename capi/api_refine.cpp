@@ -33,6 +33,7 @@ bool refine_stat(const cbr_mesh& mesh, int key, double& value) {
         case CBR_STAT_REFINE_FLIPS: value = count(r.stats.flips); return true;
         case CBR_STAT_REFINE_SECONDS: value = r.seconds; return true;
         case CBR_STAT_REFINE_TETS: value = count(r.quality.tets); return true;
+        case CBR_STAT_REFINE_OVERSIZE_TETS: value = count(r.stats.unresolved_size); return true;
         default: return false;
     }
 }

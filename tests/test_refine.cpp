@@ -73,14 +73,17 @@ Surface nine_spheres() {
     return Surface{demo.xyz, demo.tris};
 }
 
-Surface cube(double side = 1.0) {
+// The box [0, x] x [0, y] x [0, z] in twelve triangles.
+Surface box(double x, double y, double z) {
     Surface s;
-    for (int i = 0; i < 8; ++i) s.xyz.insert(s.xyz.end(), {side * (i & 1), side * ((i >> 1) & 1), side * ((i >> 2) & 1)});
-    // Outward triangles of the unit cube (vertex i = (x, y, z) bits).
+    for (int i = 0; i < 8; ++i) s.xyz.insert(s.xyz.end(), {x * (i & 1), y * ((i >> 1) & 1), z * ((i >> 2) & 1)});
+    // Outward triangles (vertex i = (x, y, z) bits).
     s.tris = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
     return s;
 }
+
+Surface cube(double side = 1.0) { return box(side, side, side); }
 
 // The unit cube whose top face folds into a low ridge along its diagonal
 // 5-6 (both raised by `rise`): the two top triangles are nearly coplanar,
@@ -1819,6 +1822,8 @@ TEST_CASE("cbr_mesh_refine: through the C API") {
     CHECK(cbr_mesh_get_stat(m, CBR_STAT_PERCENT_ABOVE_0_4, &above) == CBR_OK);
     CHECK(cbr_mesh_get_stat(m, CBR_STAT_BAD_TOUCHING_STEINER, &bad) == CBR_OK);
     CHECK(cbr_mesh_get_stat(m, CBR_STAT_REFINE_FLIPS, &v) == CBR_OK);
+    CHECK(cbr_mesh_get_stat(m, CBR_STAT_REFINE_OVERSIZE_TETS, &v) == CBR_OK);
+    CHECK(v == 0);  // the nine-sphere box meets its size bound everywhere
     CHECK(cbr_mesh_get_stat(m, 19, &v) == CBR_ERR_INVALID_ARGUMENT);
     CHECK(field == static_cast<double>(np - n));
     CHECK(tets == static_cast<double>(nt));
@@ -1856,6 +1861,36 @@ TEST_CASE("cbr_mesh_refine: through the C API") {
     CHECK(cbr_mesh_refine(nullptr) == CBR_ERR_INVALID_ARGUMENT);
 }
 
+
+TEST_CASE("cbr_mesh_refine: CBR_STAT_REFINE_OVERSIZE_TETS counts the tetrahedra left over the size bound") {
+    // A plate 30 x 30 x 1 of twelve triangles: the tetrahedra across it
+    // have edges between its two faces of up to 42, more than 1.5 times the
+    // surface's size at their ends, and no point may split them (their
+    // circumcentres encroach on the faces; an edge's midpoint lies within a
+    // tenth of its length of them). refine_and_check counts the tetrahedra
+    // over the bound on its own and checks the core's count against it;
+    // the C API must report that count.
+    const Surface plate = box(30, 30, 1);
+    const Outcome core = refine_and_check(plate, cbr::refine::RefineOptions{}, 0.0, false);
+    REQUIRE(core.stats.unresolved_size > 0);
+    cbr_mesh* m = nullptr;
+    REQUIRE(cbr_mesh_create(&m) == CBR_OK);
+    REQUIRE(cbr_mesh_insert_points(m, 8, plate.xyz.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_recover_faces(m, 12, plate.tris.data(), nullptr) == CBR_OK);
+    double oversize = -1, tets = -1, field = -1;
+    CHECK(cbr_mesh_get_stat(m, CBR_STAT_REFINE_OVERSIZE_TETS, &oversize) == CBR_OK);
+    CHECK(oversize == 0);  // before cbr_mesh_refine
+    REQUIRE(cbr_mesh_refine(m) == CBR_OK);
+    CHECK(cbr_mesh_get_stat(m, CBR_STAT_REFINE_OVERSIZE_TETS, &oversize) == CBR_OK);
+    CHECK(cbr_mesh_get_stat(m, CBR_STAT_REFINE_TETS, &tets) == CBR_OK);
+    CHECK(cbr_mesh_get_stat(m, CBR_STAT_FIELD_POINTS, &field) == CBR_OK);
+    // The same mesh as the core's run ...
+    CHECK(tets == static_cast<double>(core.quality.tets));
+    CHECK(field == static_cast<double>(core.stats.field_points));
+    // ... and the same count.
+    CHECK(oversize == static_cast<double>(core.stats.unresolved_size));
+    cbr_mesh_destroy(m);
+}
 
 TEST_CASE("refine: no bad element touches a Steiner point (suppression retried, relocation)") {
     // Du & Wang 2004, Table II's last row. On these surfaces recovery

@@ -135,6 +135,7 @@ module cbr
   integer(c_int), parameter, public :: CBR_STAT_REFINE_FLIPS = 28
   integer(c_int), parameter, public :: CBR_STAT_REFINE_SECONDS = 29
   integer(c_int), parameter, public :: CBR_STAT_REFINE_TETS = 30
+  integer(c_int), parameter, public :: CBR_STAT_REFINE_OVERSIZE_TETS = 31
 
   ! ---------------------------------------------------------------------
   ! The C functions

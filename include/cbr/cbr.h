@@ -300,6 +300,9 @@ CBR_API int cbr_mesh_get_tets(const cbr_mesh *mesh, int64_t *tets_out);
 #define CBR_STAT_REFINE_FLIPS 28           /* quality flips done by cbr_mesh_refine */
 #define CBR_STAT_REFINE_SECONDS 29
 #define CBR_STAT_REFINE_TETS 30            /* tetrahedra of the bounded regions after refinement */
+/* Tetrahedra of the bounded regions that cbr_mesh_refine left over its size
+   bound (see cbr_mesh_refine): 0 when every tetrahedron meets it. */
+#define CBR_STAT_REFINE_OVERSIZE_TETS 31
 
 /* Recovers the `count` triangles `tris` (3*count point ids, index base as
    set) as faces of the tetrahedralization of the points inserted so far,
@@ -374,23 +377,28 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
    optimisation passes (CBR_PARAM_REFINE_PASSES: quality flips, smoothing).
    The surface stays exactly the input: every input triangle stays a face,
    no point is added on it and no input point moves; the exterior (region
-   0) is not refined; regions keep their numbers. Size bound met on
-   success: every edge of a tetrahedron of a bounded region that is not an
-   input edge is at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing
-   field at its ends, or, from an input point u into the interior, at
-   most 1.25 times the largest circumradius of the input triangles at u
-   (no point may be added on the surface, so no tetrahedron on a large
-   input triangle can be small; a domain that lies within that reach of
-   its surface can thus keep few points, see README "Known
-   limitations"). New points get the next ids, after the points
-   inserted so far (and recovery's Steiner points); the Steiner points of
+   0) is not refined; regions keep their numbers. The size bound: every
+   edge of a tetrahedron of a bounded region that is not an input edge is
+   at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing field at its
+   ends, or, from an input point u into the interior, at most 1.25 times
+   the largest circumradius of the input triangles at u (no point may be
+   added on the surface, so no tetrahedron on a large input triangle can
+   be small; a domain that lies within that reach of its surface can thus
+   keep few points, see README "Known limitations"). A tetrahedron over
+   it is left as it is when its circumcentre is refused (outside its
+   region, or encroaching on an input triangle) and so is the midpoint
+   of its most over-long edge (nearer the surface than a tenth of that
+   edge), as on walls far thinner than their triangles are long:
+   CBR_STAT_REFINE_OVERSIZE_TETS counts the tetrahedra left over it. New
+   points get the next ids, after the points inserted so far (and
+   recovery's Steiner points); the Steiner points of
    recovery may move (smoothing, relocation) or, where one keeps an
    element with q < 0.1, be suppressed: cbr_mesh_steiner_count and
    cbr_mesh_steiner_points then report those left, and the ids after the
    caller's points close up (Steiner points left, then the new points;
    the caller's ids never change). Statistics: CBR_STAT_QUALITY_AVERAGE ...
-   CBR_STAT_REFINE_TETS. It may be called again (it refines further, with
-   the parameters then set).
+   CBR_STAT_REFINE_OVERSIZE_TETS. It may be called again (it refines
+   further, with the parameters then set).
    Errors (the mesh is then unchanged):
      CBR_ERR_INVALID_ARGUMENT  NULL mesh; cbr_mesh_recover_faces has not
                                succeeded on this mesh; no size (surface
