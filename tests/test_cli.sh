@@ -291,12 +291,21 @@ run_local_outputs() {
     expect 0 "" mesh --help && report_has "cbr mesh IN -o OUT \[--size H\]" && report_has "--size H" &&
         report_has "--growth R"
     expect 0 "" mesh "$tmp/cube.off" -o "$tmp/cube-mesh.mesh" --size 0.25 --json "$tmp/cube-mesh.json" &&
-        report_has "Table I" && report_has "field points inserted" && report_has "Table II"
+        report_has "Table I" && report_has "field points inserted" && report_has "Table II" &&
+        report_has "tetrahedra over the size bound +0$"
     checks=$((checks + 1))
     [ -s "$tmp/cube-mesh.mesh" ] || fail "cbr mesh wrote no file"
     json_has "$tmp/cube-mesh.json" 'd["command"] == "mesh" and d["status"] == "ok" and d["mesh"]["points"] > 8' \
         'd["refine"]["field_points"] == d["mesh"]["points"] - 8 and d["refine"]["seconds"] >= 0' \
+        'd["refine"]["oversize_tets"] == 0' \
         'd["table_two"]["tetrahedra"] == d["mesh"]["tetrahedra"] and d["table_two"]["quality_min"] > 0'
+    # A plate 30 x 30 x 1: no point may split the tetrahedra across it
+    # (test_refine), which stay over the size bound and are counted.
+    off plate "0 0 0;30 0 0;30 30 0;0 30 0;0 0 1;30 0 1;30 30 1;0 30 1" \
+        "0 2 1;0 3 2;4 5 6;4 6 7;0 1 5;0 5 4;3 7 6;3 6 2;0 4 7;0 7 3;1 2 6;1 6 5"
+    expect 0 "" mesh "$tmp/plate.off" -o "$tmp/plate.mesh" --json "$tmp/plate.json" &&
+        report_has "tetrahedra over the size bound +[1-9][0-9]*$"
+    json_has "$tmp/plate.json" '0 < d["refine"]["oversize_tets"] <= d["mesh"]["tetrahedra"]'
     if [ -n "$mesh_info" ]; then
         checks=$((checks + 1))
         "$mesh_info" "$tmp/cube-mesh.mesh" "$tmp/cube.off" > "$tmp/info" 2>&1 ||

@@ -140,6 +140,7 @@ RecoveryOutcome run_recovery(const io::SurfaceMesh& surface, const RecoveryOptio
         out.has_refine = true;
         cbr_mesh_get_stat(m, CBR_STAT_FIELD_POINTS, &out.refine.field_points);
         cbr_mesh_get_stat(m, CBR_STAT_REFINE_FLIPS, &out.refine.flips);
+        cbr_mesh_get_stat(m, CBR_STAT_REFINE_OVERSIZE_TETS, &out.refine.oversize_tets);
         cbr_mesh_get_stat(m, CBR_STAT_REFINE_SECONDS, &out.refine.seconds);
     }
     steps.begin("measuring quality");

@@ -38,6 +38,7 @@ struct RecoveryOptions {
 // What cbr_mesh_refine reports (its CBR_STAT_* keys).
 struct RefineSummary {
     double field_points = 0, flips = 0, seconds = 0;
+    double oversize_tets = 0;  // left over the size bound (CBR_STAT_REFINE_OVERSIZE_TETS)
 };
 
 struct RecoveryOutcome {

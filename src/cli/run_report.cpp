@@ -117,6 +117,7 @@ std::string run_report_json(const RunDescription& run, const RecoveryOutcome& ou
         j.begin_object();
         j.key("field_points").integer(count(outcome.refine.field_points));
         j.key("flips").integer(count(outcome.refine.flips));
+        j.key("oversize_tets").integer(count(outcome.refine.oversize_tets));
         j.key("seconds").number(outcome.refine.seconds);
         j.end_object();
     } else {

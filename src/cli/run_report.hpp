@@ -26,7 +26,8 @@
 //                   "region_count": 2,
 //                   "delaunay_seconds": ..., "recovery_seconds": ...,
 //                   "total_seconds": ...},               null before recovery ran
-//     "refine": {"field_points": ..., "flips": ..., "seconds": ...},
+//     "refine": {"field_points": ..., "flips": ..., "oversize_tets": 0,
+//                "seconds": ...},
 //                                                        null unless cbr mesh refined
 //     "table_two": {"tetrahedra": 6, "quality_average": ..., "quality_min": ...,
 //                   "percent_above_0_4": ..., "percent_below_0_1": ...,

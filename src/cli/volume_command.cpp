@@ -110,6 +110,7 @@ void print_refine(std::FILE* out, const RefineSummary& r) {
     std::fprintf(out, "Mesh generation (Du & Wang 2004, section 6)\n");
     std::fprintf(out, "  %-36s%12.0f\n", "field points inserted", r.field_points);
     std::fprintf(out, "  %-36s%12.0f\n", "quality flips", r.flips);
+    std::fprintf(out, "  %-36s%12.0f\n", "tetrahedra over the size bound", r.oversize_tets);
     std::fprintf(out, "  time: refinement %.3f s\n", r.seconds);
 }
 
