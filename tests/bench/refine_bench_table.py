@@ -5,7 +5,8 @@ each successful run's mesh (TetGen's .node/.ele for cbr and TetGen, Medit
 (q = 3 r_in / r_circ after scaling to unit longest edge; dihedral angles by
 atan2), takes libcbr's "q < 0.1 touching a Steiner point" from its --json
 report (column stn; the peers' outputs do not tell their Steiner points from
-their other points), prints per peer (TetGen; gmsh when it ran) the per-mesh
+their other points) and the tetrahedra it left over its size bound (their
+total under the table), prints per peer (TetGen; gmsh when it ran) the per-mesh
 table and the totals (over the surfaces both cbr and the peer meshed), and
 with --csv FILE writes them as CSV: the TetGen columns first, as before the
 gmsh columns were added at the end of each row, and after the TetGen total
@@ -131,12 +132,15 @@ def table_two(node_path, ele_path=None):
             "dih": dmin if n else None, "below": 100.0 * below / n if n else None}
 
 
-def bad_at_steiner(json_path):
-    """Table II's "q < 0.1 touching a Steiner point" from cbr's --json
-    report, or None when there is none."""
+def from_report(json_path, *keys):
+    """A value of cbr's --json report (keys: its path), or None when the
+    report or the value is missing."""
     try:
         with open(json_path) as f:
-            return json.load(f)["table_two"]["bad_touching_steiner"]
+            value = json.load(f)
+        for key in keys:
+            value = value[key]
+        return value
     except (OSError, ValueError, KeyError, TypeError):
         return None
 
@@ -164,7 +168,7 @@ def peer_table(rows, peer):
     print(head)
     print("-" * len(head))
     out = []
-    tot = {"stn": 0, "cbr_t": 0, "p_t": 0, "cbr_s": 0.0, "p_s": 0.0, "cbr_q": 0.0, "p_q": 0.0, "cbr_b": 0.0, "p_b": 0.0,
+    tot = {"stn": 0, "over": 0, "cbr_t": 0, "p_t": 0, "cbr_s": 0.0, "p_s": 0.0, "cbr_q": 0.0, "p_q": 0.0, "cbr_b": 0.0, "p_b": 0.0,
            "cbr_min": 1.0, "p_min": 1.0, "cbr_dih": 180.0, "p_dih": 180.0, "n": 0}
     for r in rows:
         c, t = r["cbr"] or {}, r[peer] or {}
@@ -181,7 +185,8 @@ def peer_table(rows, peer):
         if r["cbr"] and r[peer]:
             tot["n"] += 1
             # No total once a report lacks the count.
-            tot["stn"] = None if tot["stn"] is None or c.get("stn") is None else tot["stn"] + c["stn"]
+            for key in ("stn", "over"):
+                tot[key] = None if tot[key] is None or c.get(key) is None else tot[key] + c[key]
             for tool, m, s in (("cbr", c, r["cbr_s"]), ("p", t, r[peer + "_s"])):
                 tot[tool + "_t"] += m["tets"]
                 tot[tool + "_s"] += s
@@ -200,7 +205,8 @@ def peer_table(rows, peer):
             fmt(total[14], "d"), total[12], total[13], ct / pt, total[12] / total[13] if total[13] else float("nan")))
         print("(total: q avg and %%q<.1 over all tetrahedra, q min and dihedral min over all meshes; "
               "tetrahedra with q < 0.1: %d cbr, %d %s; stn: cbr's tetrahedra with q < 0.1 touching a Steiner point, "
-              "Table II's last row)" % (round(tot["cbr_b"]), round(tot["p_b"]), name))
+              "Table II's last row; cbr's tetrahedra left over its size bound: %s)"
+              % (round(tot["cbr_b"]), round(tot["p_b"]), name, fmt(tot["over"], "d")))
         out.append(total)
     return out
 
@@ -221,7 +227,11 @@ def main():
             row["gm_s"] = float(r["gmsh_seconds"]) if r.get("gmsh_seconds") else None
             row["gm"] = table_two(r["gmsh_mesh"]) if row["gm_status"] == "ok" else None
             if row["cbr"] is not None:
-                row["cbr"]["stn"] = bad_at_steiner(r.get("cbr_json") or "")
+                report = r.get("cbr_json") or ""
+                # Table II's "q < 0.1 touching a Steiner point", and the
+                # tetrahedra left over the size bound.
+                row["cbr"]["stn"] = from_report(report, "table_two", "bad_touching_steiner")
+                row["cbr"]["over"] = from_report(report, "refine", "oversize_tets")
             rows.append(row)
 
     out = peer_table(rows, "tg")
