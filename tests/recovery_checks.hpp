@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cmath>
 #include <map>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -76,14 +78,52 @@ inline long double enclosed_volume(const std::vector<double>& xyz, const std::ve
 }
 
 // How many of the points `ids` (coordinates in pts, 3 per id) lie on one
-// of the triangles `tris` (exact, closed triangles).
+// of the triangles `tris` (exact, closed triangles). Each point is tested
+// against the triangles whose bounding boxes share its cell of a grid over
+// the triangles' box: a triangle holding the point has the point in its
+// box, and the cell index is monotone in each coordinate, so that cell is
+// among the triangle's.
 inline std::size_t points_on_triangles(const std::vector<double>& pts, const std::vector<std::int64_t>& ids,
                                        const std::vector<std::int64_t>& tris) {
     const auto P = [&](std::int64_t v) { return &pts[3 * static_cast<std::size_t>(v)]; };
+    const std::size_t count = tris.size() / 3;
+    if (count == 0 || ids.empty()) return 0;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = P(tris[0])[k];
+    for (std::int64_t v : tris)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], P(v)[k]), hi[k] = std::max(hi[k], P(v)[k]);
+    // About two triangles per cell along each axis of a surface.
+    const int cells = std::clamp(static_cast<int>(2 * std::sqrt(static_cast<double>(count))), 1, 256);
+    const auto cell = [&](double x, int k) {
+        const double span = hi[k] - lo[k];
+        if (!(span > 0)) return 0;
+        return std::clamp(static_cast<int>((x - lo[k]) / span * cells), 0, cells - 1);
+    };
+    const auto key = [&](int x, int y, int z) {
+        return (static_cast<std::size_t>(x) * static_cast<std::size_t>(cells) + static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(cells) + static_cast<std::size_t>(z);
+    };
+    std::unordered_map<std::size_t, std::vector<std::size_t>> grid;
+    for (std::size_t i = 0; i < count; ++i) {
+        int a[3], b[3];
+        for (int k = 0; k < 3; ++k) {
+            const double x0 = P(tris[3 * i])[k], x1 = P(tris[3 * i + 1])[k], x2 = P(tris[3 * i + 2])[k];
+            a[k] = cell(std::min({x0, x1, x2}), k);
+            b[k] = cell(std::max({x0, x1, x2}), k);
+        }
+        for (int x = a[0]; x <= b[0]; ++x)
+            for (int y = a[1]; y <= b[1]; ++y)
+                for (int z = a[2]; z <= b[2]; ++z) grid[key(x, y, z)].push_back(i);
+    }
     std::size_t on = 0;
-    for (std::int64_t v : ids)
-        for (std::size_t i = 0; i + 2 < tris.size(); i += 3)
-            on += cbr::geom::point_in_triangle(P(v), P(tris[i]), P(tris[i + 1]), P(tris[i + 2]));
+    for (std::int64_t v : ids) {
+        const double* p = P(v);
+        if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) continue;
+        const auto it = grid.find(key(cell(p[0], 0), cell(p[1], 1), cell(p[2], 2)));
+        if (it == grid.end()) continue;
+        for (std::size_t i : it->second)
+            on += cbr::geom::point_in_triangle(p, P(tris[3 * i]), P(tris[3 * i + 1]), P(tris[3 * i + 2]));
+    }
     return on;
 }
 
