@@ -372,31 +372,32 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
 
 /* Fills the bounded regions of a recovered mesh with points and improves
    its elements: a sizing field (CBR_PARAM_REFINE_SIZE, _GRADING,
-   _SIZE_FROM_SURFACE, _GROWTH), field points inserted until every tetrahedron meets
-   it and the quality bound (CBR_PARAM_REFINE_QUALITY_BOUND), then
-   optimisation passes (CBR_PARAM_REFINE_PASSES: quality flips, smoothing).
-   The surface stays exactly the input: every input triangle stays a face,
-   no point is added on it and no input point moves; the exterior (region
-   0) is not refined; regions keep their numbers. The size bound: every
+   _SIZE_FROM_SURFACE, _GROWTH), field points inserted until the
+   tetrahedra meet it and the quality bound (CBR_PARAM_REFINE_QUALITY_BOUND)
+   as far as points may go (see below), then optimisation passes
+   (CBR_PARAM_REFINE_PASSES: quality flips, smoothing). The surface stays
+   exactly the input: every input triangle stays a face, no point is
+   added on it and no input point moves; the exterior (region 0) is not
+   refined; regions keep their numbers. The size bound: every
    edge of a tetrahedron of a bounded region that is not an input edge is
    at most 1.5 (h(u) + h(v)) / 2 long, h being the sizing field at its
    ends, or, from an input point u into the interior, at most 1.25 times
    the largest circumradius of the input triangles at u (no point may be
    added on the surface, so no tetrahedron on a large input triangle can
    be small; a domain that lies within that reach of its surface can thus
-   keep few points, see README "Known limitations"). A tetrahedron over
-   it is left as it is when its circumcentre is refused (outside its
-   region, or encroaching on an input triangle) and so is the midpoint
-   of its most over-long edge (nearer the surface than a tenth of that
-   edge), as on walls far thinner than their triangles are long:
-   CBR_STAT_REFINE_OVERSIZE_TETS counts the tetrahedra left over it. New
-   points get the next ids, after the points inserted so far (and
-   recovery's Steiner points); the Steiner points of
-   recovery may move (smoothing, relocation) or, where one keeps an
-   element with q < 0.1, be suppressed: cbr_mesh_steiner_count and
-   cbr_mesh_steiner_points then report those left, and the ids after the
-   caller's points close up (Steiner points left, then the new points;
-   the caller's ids never change). Statistics: CBR_STAT_QUALITY_AVERAGE ...
+   keep few points, see README "Known limitations"). Tetrahedra stay over
+   it where refinement may not split them: their circumcentre is refused
+   (outside their region, or encroaching on an input triangle) and so is
+   the midpoint of their most over-long edge (nearer the surface than a
+   tenth of that edge), as on walls far thinner than their triangles are
+   long; CBR_STAT_REFINE_OVERSIZE_TETS counts those over it at the end.
+   New points get the next ids, after the points inserted so far (and
+   recovery's Steiner points); the Steiner points of recovery may move
+   (smoothing, relocation) or, where one keeps an element with q < 0.1,
+   be suppressed: cbr_mesh_steiner_count and cbr_mesh_steiner_points then
+   report those left, and the ids after the caller's points close up
+   (Steiner points left, then the new points; the caller's ids never
+   change). Statistics: CBR_STAT_QUALITY_AVERAGE ...
    CBR_STAT_REFINE_OVERSIZE_TETS. It may be called again (it refines
    further, with the parameters then set).
    Errors (the mesh is then unchanged):
