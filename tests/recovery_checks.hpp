@@ -1,9 +1,10 @@
-// The project's own exact checks of a recovered mesh, through the C API:
-// every input triangle a face, every tetrahedron positively oriented, no
-// Steiner point on an input triangle, the bounded regions' volume equal to
-// the enclosed volume, regions that differ across every input triangle.
-// Shared by test_recover_surfaces.cpp and test_hard_cases.cpp; include it
-// after <doctest/doctest.h>.
+// The project's own exact checks of a recovered (or refined) mesh, through
+// the C API: every input triangle a face, every tetrahedron positively
+// oriented, no added point (Steiner or field point) on an input triangle,
+// the bounded regions' volume equal to the enclosed volume, regions that
+// differ across every input triangle. Shared by test_recover_surfaces.cpp,
+// test_refine_surfaces.cpp and test_hard_cases.cpp; include it after
+// <doctest/doctest.h>.
 #pragma once
 
 #include <doctest/doctest.h>
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -92,7 +94,8 @@ inline std::size_t points_on_triangles(const std::vector<double>& pts, const std
     for (int k = 0; k < 3; ++k) lo[k] = hi[k] = P(tris[0])[k];
     for (std::int64_t v : tris)
         for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], P(v)[k]), hi[k] = std::max(hi[k], P(v)[k]);
-    // About two triangles per cell along each axis of a surface.
+    // A surface of n triangles is about sqrt(n) triangles across: cells
+    // about half a triangle wide.
     const int cells = std::clamp(static_cast<int>(2 * std::sqrt(static_cast<double>(count))), 1, 256);
     const auto cell = [&](double x, int k) {
         const double span = hi[k] - lo[k];
@@ -172,10 +175,16 @@ inline void check_recovered(cbr_mesh* m, const std::vector<double>& xyz, const s
     }
     CHECK(missing == 0);
     if (regions_apart) CHECK(same_region == 0);
-    // Steiner points: none on any input triangle (exact).
+    // Every point after the input's (the Steiner points among them, and
+    // after cbr_mesh_refine its field points): none on an input triangle
+    // (exact).
+    const auto n = static_cast<std::int64_t>(xyz.size() / 3);
     std::vector<std::int64_t> steiner(static_cast<std::size_t>(cbr_mesh_steiner_count(m)));
     REQUIRE(cbr_mesh_steiner_points(m, steiner.data()) == CBR_OK);
-    CHECK(points_on_triangles(pts, steiner, tris) == 0);
+    CHECK(std::all_of(steiner.begin(), steiner.end(), [&](std::int64_t v) { return n <= v && v < np; }));
+    std::vector<std::int64_t> added(static_cast<std::size_t>(np - n));
+    std::iota(added.begin(), added.end(), n);
+    CHECK(points_on_triangles(pts, added, tris) == 0);
     // Volume of the bounded regions = volume of the domain.
     const long double enclosed = expected_volume > 0 ? expected_volume : enclosed_volume(xyz, tris);
     if (enclosed > 0) CHECK(static_cast<double>(bounded / 6 / enclosed) == doctest::Approx(1.0).epsilon(1e-9));

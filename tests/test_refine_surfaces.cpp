@@ -16,10 +16,8 @@
 
 #include <cbr/cbr.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -58,16 +56,9 @@ TEST_CASE("cbr_mesh_refine on every shared surface") {
         CHECK(tets == static_cast<double>(cbr_mesh_tet_count(m)));
         CHECK(0 <= oversize);
         CHECK(oversize <= tets);
-        // Faces, orientation, regions apart, volume, Steiner points; then
-        // every added point (Steiner and field points, ids after the
-        // input's) off the input triangles, exactly.
+        // Faces, orientation, regions apart, volume, and every added point
+        // (Steiner and field points) off the input triangles.
         cbr::test::check_recovered(m, s.xyz, s.tris);
-        const std::int64_t np = cbr_mesh_point_count(m);
-        std::vector<double> pts(3 * static_cast<std::size_t>(np));
-        REQUIRE(cbr_mesh_get_points(m, pts.data()) == CBR_OK);
-        std::vector<std::int64_t> added(static_cast<std::size_t>(np - n));
-        std::iota(added.begin(), added.end(), n);
-        CHECK(cbr::test::points_on_triangles(pts, added, s.tris) == 0);
         cbr_mesh_destroy(m);
     }
     CHECK(meshed == cbr::test::shared_surfaces().size());

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mesh/errors.hpp"
+#include "mesh/key_table.hpp"
 
 namespace cbr::recover {
 
@@ -99,7 +100,7 @@ bool SurfacePoints::on_one_edge(VertexId x, VertexId y, VertexId z) const {
         const auto on = [&](VertexId w) {
             if (w == e.a || w == e.b) return true;
             const Added* other = find_added(w);
-            return other && other->face == npos && edge_key(other->a, other->b) == edge_key(e.a, e.b);
+            return other && other->face == npos && mesh::edge_key(other->a, other->b) == mesh::edge_key(e.a, e.b);
         };
         return on(x) && on(y) && on(z);
     }
@@ -109,10 +110,10 @@ bool SurfacePoints::on_one_edge(VertexId x, VertexId y, VertexId z) const {
 bool SurfacePoints::is_chain_link(VertexId x, VertexId y) const {
     // The input edge both would lie on: that of an added edge point among
     // them, or xy itself.
-    std::uint64_t edge = edge_key(x, y);
+    std::uint64_t edge = mesh::edge_key(x, y);
     for (const VertexId v : {x, y}) {
         const Added* found = find_added(v);
-        if (found && found->face == npos) edge = edge_key(found->a, found->b);
+        if (found && found->face == npos) edge = mesh::edge_key(found->a, found->b);
     }
     const auto it = chains_.find(edge);
     if (it == chains_.end()) return false;
@@ -134,7 +135,7 @@ std::vector<std::uint32_t> SurfacePoints::faces_of_edge(VertexId a, VertexId b) 
 }
 
 std::vector<VertexId> SurfacePoints::chain(VertexId a, VertexId b) const {
-    const auto it = chains_.find(edge_key(a, b));
+    const auto it = chains_.find(mesh::edge_key(a, b));
     if (it == chains_.end()) return {};
     std::vector<VertexId> c = it->second;
     if (c.front() != a) std::reverse(c.begin(), c.end());
@@ -143,14 +144,14 @@ std::vector<VertexId> SurfacePoints::chain(VertexId a, VertexId b) const {
 
 void SurfacePoints::set_chain(VertexId a, VertexId b, std::vector<VertexId> chain) {
     if (chain.front() != std::min(a, b)) std::reverse(chain.begin(), chain.end());
-    chains_[edge_key(a, b)] = std::move(chain);
+    chains_[mesh::edge_key(a, b)] = std::move(chain);
 }
 
 void SurfacePoints::remove_from_chain(VertexId p) {
     const Added* found = find_added(p);
     if (!found) throw InternalError("SurfacePoints::remove_from_chain: not an added point");
     const Added& x = *found;
-    auto& c = chains_.at(edge_key(x.a, x.b));
+    auto& c = chains_.at(mesh::edge_key(x.a, x.b));
     c.erase(std::find(c.begin(), c.end(), p));
 }
 

@@ -16,7 +16,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
 
@@ -71,7 +70,6 @@ public:
     const ConstraintFaces& faces() const { return faces_; }
 
 private:
-    static std::uint64_t edge_key(mesh::VertexId a, mesh::VertexId b) { return mesh::edge_key(a, b); }
     struct Added {
         mesh::VertexId a = 0, b = 0;  // edge points: the input edge
         std::size_t face = npos;      // face points: the triangle; npos for edge points

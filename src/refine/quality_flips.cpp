@@ -87,7 +87,6 @@ public:
     }
 
 private:
-    static std::uint64_t key(VertexId a, VertexId b) { return mesh::edge_key(a, b); }
     template <typename Tets>
     void note_replaced(const Tets& tets) {
         if (log)
@@ -108,7 +107,7 @@ private:
             const VertexId* w = m_.vertices(t);
             for (int i = 0; i < 4; ++i)
                 for (int j = i + 1; j < 4; ++j)
-                    if (bool* refused = refused_.find(key(w[i], w[j]))) *refused = false;
+                    if (bool* refused = refused_.find(mesh::edge_key(w[i], w[j]))) *refused = false;
         }
     }
     // The shell of uv (t holds it) into s, when edge removal may try it:
@@ -170,9 +169,9 @@ private:
 // ring triangulation of mesh/flips.hpp.
 bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
     if (c_.is_surface_edge(u, v)) return false;
-    if (const bool* refused = refused_.find(key(u, v)); refused && *refused) return false;
+    if (const bool* refused = refused_.find(mesh::edge_key(u, v)); refused && *refused) return false;
     if (!remove_edge(t, u, v) && !(after_another && remove_edge_after_another(t, u, v))) {
-        refused_[key(u, v)] = true;
+        refused_[mesh::edge_key(u, v)] = true;
         return false;
     }
     return true;
