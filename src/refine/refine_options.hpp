@@ -46,14 +46,16 @@ struct RefineOptions {
     // over it, none longer (quality_flips.cpp, Flipper::chord_limit2).
     bool dihedral_chords_up_to_removed_edge = true;
     bool dihedral_smoothing = true;   // after the dihedral flips (smoothing.hpp), then those flips again
-    bool angle_rescue = true;         // last: rescue_small_angles (sliver_removal.hpp)
+    bool angle_rescue = true;         // then: rescue_small_angles (sliver_removal.hpp)
+    bool vertex_cones = true;         // last: improve_by_vertex_cones (vertex_cones.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
 // at most kEdgeFactor * (h(u) + h(v)) / 2 long (surface edges are input and
 // never split). Flips and smoothing keep this bound, except that a flip for
 // the smallest dihedral angle may replace an edge over it by chords no
-// longer than that edge.
+// longer than that edge, and a cone from a vertex (vertex_cones.hpp) may
+// make edges over it no longer than an edge over it that it removes.
 inline constexpr double kEdgeFactor = 1.5;
 // An edge from a surface vertex u into the interior may always be as long as
 // kSurfaceReach times the largest circumradius of the input triangles at u
@@ -80,6 +82,7 @@ struct RefineStats {
     std::size_t sliver_cavities_skipped = 0;  // cavities sliver removal did not rate (a face's bound)
     std::size_t steiner_suppressed = 0; // Steiner points suppressed after refinement (steiner_removal.hpp)
     std::size_t steiner_relocated = 0;  // Steiner points moved with their neighbourhood (steiner_relocation.hpp)
+    std::size_t vertex_cones = 0;       // cavities replaced by a vertex's cone (vertex_cones.hpp)
 };
 
 }  // namespace cbr::refine

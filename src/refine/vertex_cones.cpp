@@ -1,0 +1,264 @@
+#include "refine/vertex_cones.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "geom/predicates.hpp"
+#include "mesh/ball_shell.hpp"
+#include "mesh/slot_marks.hpp"
+#include "mesh/surgery.hpp"
+#include "refine/quality_stats.hpp"
+#include "refine/tet_measures.hpp"
+
+namespace cbr::refine {
+namespace {
+
+using mesh::facet_tet;
+using mesh::kFaceVertices;
+using mesh::kGhostVertex;
+using mesh::TetId;
+using mesh::VertexId;
+
+// Tetrahedra a cavity may grow to: a bound on the work per apex (each
+// tetrahedron taken in costs up to four exact orientation tests).
+constexpr std::size_t kMaxCavity = 64;
+// A cone kept for its angle beats the cavity's smallest dihedral angle by
+// this factor (as the points for small angles, sliver_removal.cpp).
+constexpr double kAngleGain = 1.0 + 1e-3;
+
+using Face = std::array<VertexId, 3>;  // kFaceVertices order: the cavity is on the positive side
+
+// What Table II counts in a set of tetrahedra.
+struct Rating {
+    std::size_t bad = 0;             // under the threshold
+    std::size_t bad_at_steiner = 0;  // of them, with a Steiner corner
+    double worst_ratio = 1;          // smallest radius ratio
+    double smallest_angle = 180;     // smallest dihedral angle, degrees
+    // The squared length of the longest edge over the size bound (0: none).
+    double longest_over_bound2 = 0;
+};
+
+double squared_distance(const double* a, const double* b) {
+    const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+    return x * x + y * y + z * z;
+}
+
+class ConeMaker {
+public:
+    ConeMaker(RefineContext& c, const std::vector<char>& steiner, double threshold)
+        : c_(c), m_(c.m), steiner_(steiner), threshold_(threshold) {}
+
+    // The best cone for t, if one is kept (then true, and `log` gets it).
+    bool improve(TetId t, std::vector<TetChange>* log);
+
+private:
+    bool is_steiner(VertexId v) const { return v < steiner_.size() && steiner_[v]; }
+    bool in_cavity(TetId t) const { return marks_.has(t, kInCavity); }
+    void add_to_cavity(TetId t) {
+        cavity_.push_back(t);
+        marks_.set(t, kInCavity);
+    }
+    void collect_apexes(TetId t);
+    bool grow(TetId start, VertexId apex, std::int32_t region);
+    bool collect_boundary(VertexId apex);
+    Rating rate_cavity() const;
+    bool rate_cone(VertexId apex, const Rating& cavity, Rating& cone) const;
+    void count(double q, bool at_steiner, Rating& r) const {
+        r.worst_ratio = std::min(r.worst_ratio, q);
+        if (q >= threshold_) return;
+        ++r.bad;
+        r.bad_at_steiner += at_steiner;
+    }
+
+    RefineContext& c_;
+    mesh::TetMesh& m_;
+    const std::vector<char>& steiner_;
+    const double threshold_;
+    static constexpr std::uint8_t kInCavity = 1u << 0;
+    mesh::SlotMarks marks_;
+    std::vector<TetId> ball_, cavity_;
+    std::vector<VertexId> apexes_, boundary_vertices_;
+    std::vector<Face> boundary_;
+};
+
+// The vertices of the tetrahedra around t's corners, t's own excepted.
+void ConeMaker::collect_apexes(TetId t) {
+    apexes_.clear();
+    const VertexId* corners = m_.vertices(t);
+    for (int i = 0; i < 4; ++i) {
+        if (!mesh::ball(m_, corners[i], t, ball_)) continue;
+        for (TetId s : ball_)
+            for (int k = 0; k < 4; ++k) apexes_.push_back(m_.vertex(s, k));
+    }
+    std::sort(apexes_.begin(), apexes_.end());
+    apexes_.erase(std::unique(apexes_.begin(), apexes_.end()), apexes_.end());
+    apexes_.erase(std::remove_if(apexes_.begin(), apexes_.end(),
+                                 [&](VertexId v) {
+                                     return v == kGhostVertex || std::find(corners, corners + 4, v) != corners + 4;
+                                 }),
+                  apexes_.end());
+}
+
+// The cavity from `start` seen whole from `apex` (the header's growth);
+// false when it would cross a constraint face, leave the region or exceed
+// kMaxCavity.
+bool ConeMaker::grow(TetId start, VertexId apex, std::int32_t region) {
+    marks_.new_round(m_.slot_count());
+    cavity_.clear();
+    add_to_cavity(start);
+    const double* p = m_.point(apex);
+    // Each tetrahedron taken in is scanned once; a face found blocking is
+    // then interior (the tetrahedron behind it joins), so none is missed.
+    for (std::size_t i = 0; i < cavity_.size(); ++i) {
+        const TetId t = cavity_[i];
+        const VertexId* w = m_.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            const TetId behind = facet_tet(m_.neighbor(t, f));
+            const bool constrained = m_.is_constrained(t, f);
+            if (!constrained && in_cavity(behind)) continue;
+            const int* k = kFaceVertices[f];
+            if (w[k[0]] == apex || w[k[1]] == apex || w[k[2]] == apex) continue;
+            if (geom::orient3d(m_.point(w[k[0]]), m_.point(w[k[1]]), m_.point(w[k[2]]), p) > 0) continue;
+            if (constrained || !c_.in_domain(behind) || c_.region(behind) != region || cavity_.size() >= kMaxCavity)
+                return false;
+            add_to_cavity(behind);
+        }
+    }
+    return true;
+}
+
+// The boundary faces of the cavity and their vertices; false when a vertex
+// other than `apex` is inside the cavity (on no boundary face).
+bool ConeMaker::collect_boundary(VertexId apex) {
+    boundary_.clear();
+    boundary_vertices_.clear();
+    for (TetId t : cavity_) {
+        const VertexId* w = m_.vertices(t);
+        for (int f = 0; f < 4; ++f) {
+            if (!m_.is_constrained(t, f) && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
+            const int* k = kFaceVertices[f];
+            boundary_.push_back({w[k[0]], w[k[1]], w[k[2]]});
+            for (int i = 0; i < 3; ++i) boundary_vertices_.push_back(w[k[i]]);
+        }
+    }
+    std::sort(boundary_vertices_.begin(), boundary_vertices_.end());
+    boundary_vertices_.erase(std::unique(boundary_vertices_.begin(), boundary_vertices_.end()),
+                             boundary_vertices_.end());
+    for (TetId t : cavity_)
+        for (int i = 0; i < 4; ++i) {
+            const VertexId w = m_.vertex(t, i);
+            if (w != apex && !std::binary_search(boundary_vertices_.begin(), boundary_vertices_.end(), w))
+                return false;
+        }
+    return true;
+}
+
+Rating ConeMaker::rate_cavity() const {
+    Rating r;
+    for (TetId t : cavity_) {
+        const VertexId* w = m_.vertices(t);
+        const double* p[4];
+        corner_points(m_, t, p);
+        count(radius_ratio(p[0], p[1], p[2], p[3]), is_steiner(w[0]) || is_steiner(w[1]) || is_steiner(w[2]) ||
+                                                        is_steiner(w[3]), r);
+        r.smallest_angle = std::min(r.smallest_angle, min_dihedral(p[0], p[1], p[2], p[3]));
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j)
+                if (!c_.edge_within_size(w[i], w[j]))
+                    r.longest_over_bound2 = std::max(r.longest_over_bound2, squared_distance(p[i], p[j]));
+    }
+    return r;
+}
+
+// The cone from `apex` over the boundary faces not at it, rated; false as
+// soon as it breaks a rule: a tetrahedron under both the threshold and the
+// cavity's worst, more bad tetrahedra (at Steiner points or in all) than
+// the cavity, a new edge over the size bound and longer than every edge
+// of the cavity over it (refine_options.hpp, kEdgeFactor: as a flip for
+// the smallest angle, a cone may replace an over-long edge by no longer
+// ones).
+bool ConeMaker::rate_cone(VertexId apex, const Rating& cavity, Rating& cone) const {
+    cone = Rating{};
+    const double* p = m_.point(apex);
+    const bool apex_steiner = is_steiner(apex);
+    for (const Face& f : boundary_) {
+        if (f[0] == apex || f[1] == apex || f[2] == apex) continue;
+        const double* a = m_.point(f[0]);
+        const double* b = m_.point(f[1]);
+        const double* d = m_.point(f[2]);
+        const double q = radius_ratio(a, b, d, p);
+        if (q < threshold_ && q < cavity.worst_ratio) return false;
+        count(q, apex_steiner || is_steiner(f[0]) || is_steiner(f[1]) || is_steiner(f[2]), cone);
+        if (cone.bad > cavity.bad || cone.bad_at_steiner > cavity.bad_at_steiner) return false;
+        cone.smallest_angle = std::min(cone.smallest_angle, min_dihedral(a, b, d, p));
+    }
+    for (const Face& f : boundary_) {
+        if (f[0] == apex || f[1] == apex || f[2] == apex) continue;
+        for (VertexId w : f)
+            if (!c_.edge_within_size(apex, w) && squared_distance(p, m_.point(w)) > cavity.longest_over_bound2)
+                return false;
+    }
+    return true;
+}
+
+bool ConeMaker::improve(TetId t, std::vector<TetChange>* log) {
+    const std::int32_t region = c_.region(t);
+    collect_apexes(t);
+    VertexId best = kGhostVertex;
+    Rating best_cone;
+    std::size_t best_gain = 0;
+    std::vector<TetId> best_cavity;
+    std::vector<Face> best_boundary;
+    for (VertexId apex : apexes_) {
+        if (!grow(t, apex, region) || !collect_boundary(apex)) continue;
+        const Rating cavity = rate_cavity();
+        Rating cone;
+        if (!rate_cone(apex, cavity, cone)) continue;
+        const bool fewer_at_steiner = cone.bad_at_steiner < cavity.bad_at_steiner;
+        if (!fewer_at_steiner && !(cone.smallest_angle > cavity.smallest_angle * kAngleGain)) continue;
+        // The gain at Steiner points first, then the angle.
+        const std::size_t gain = cavity.bad_at_steiner - cone.bad_at_steiner;
+        if (best != kGhostVertex &&
+            (gain < best_gain || (gain == best_gain && !(cone.smallest_angle > best_cone.smallest_angle))))
+            continue;
+        best = apex;
+        best_cone = cone;
+        best_gain = gain;
+        best_cavity = cavity_;
+        best_boundary = boundary_;
+    }
+    if (best == kGhostVertex) return false;
+    std::vector<std::array<VertexId, 4>> fresh;
+    for (const Face& f : best_boundary)
+        if (f[0] != best && f[1] != best && f[2] != best) fresh.push_back({f[0], f[1], f[2], best});
+    TetChange change;
+    if (log)
+        for (TetId s : best_cavity) change.replaced.push_back(corners_of(m_, s));
+    std::vector<TetId> made;
+    if (mesh::replace_tets(m_, best_cavity, fresh, &made) != mesh::ReplaceResult::kDone) return false;
+    for (TetId s : made) c_.set_region(s, region);
+    if (log) {
+        change.made = fresh;
+        log->push_back(std::move(change));
+    }
+    return true;
+}
+
+}  // namespace
+
+std::size_t improve_by_vertex_cones(RefineContext& c, const std::vector<char>& steiner, double below_degrees,
+                                    double threshold, std::vector<TetChange>* log) {
+    ConeMaker maker(c, steiner, threshold);
+    const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
+    std::size_t made = 0;
+    const mesh::TetId slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t) {
+        if (!c.in_domain(t)) continue;
+        const bool picked = has_dihedral_below(c.m, t, below_degrees, q_bound) ||
+                            (has_flagged_corner(c.m, t, steiner) && radius_ratio(c.m, t) < threshold);
+        if (picked && maker.improve(t, log)) ++made;
+    }
+    return made;
+}
+
+}  // namespace cbr::refine
