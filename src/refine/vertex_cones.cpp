@@ -48,8 +48,10 @@ public:
     ConeMaker(RefineContext& c, const std::vector<char>& steiner, double threshold)
         : c_(c), m_(c.m), steiner_(steiner), threshold_(threshold) {}
 
-    // The best cone for t, if one is kept (then true, and `log` gets it).
-    bool improve(TetId t, std::vector<TetChange>* log);
+    // The best cone for t, if one is kept (then true, and `log` gets it);
+    // `suppressed` is then the Steiner point it took out of the mesh, or
+    // kGhostVertex.
+    bool improve(TetId t, VertexId& suppressed, std::vector<TetChange>* log);
 
 private:
     bool is_steiner(VertexId v) const { return v < steiner_.size() && steiner_[v]; }
@@ -58,9 +60,16 @@ private:
         cavity_.push_back(t);
         marks_.set(t, kInCavity);
     }
+    // Where a cavity starts: {t}, or the ball of a Steiner corner of t
+    // that the cone then takes out of the mesh (`inside`).
+    struct Start {
+        std::vector<TetId> tets;
+        VertexId inside = kGhostVertex;
+    };
+    void collect_starts(TetId t, std::int32_t region);
     void collect_apexes(TetId t);
-    bool grow(TetId start, VertexId apex, std::int32_t region);
-    bool collect_boundary(VertexId apex);
+    bool grow(const Start& start, VertexId apex, std::int32_t region);
+    bool collect_boundary(VertexId apex, VertexId inside);
     Rating rate_cavity() const;
     bool rate_cone(VertexId apex, const Rating& cavity, Rating& cone) const;
     void count(double q, bool at_steiner, Rating& r) const {
@@ -77,11 +86,14 @@ private:
     static constexpr std::uint8_t kInCavity = 1u << 0;
     mesh::SlotMarks marks_;
     std::vector<TetId> ball_, cavity_;
+    std::vector<Start> starts_;
     std::vector<VertexId> apexes_, boundary_vertices_;
     std::vector<Face> boundary_;
 };
 
-// The vertices of the tetrahedra around t's corners, t's own excepted.
+// The vertices of the tetrahedra around t's corners (t's own too: over {t}
+// a corner's cone is t itself, which no rule keeps; over the ball of
+// another corner, it is that corner's contraction onto it).
 void ConeMaker::collect_apexes(TetId t) {
     apexes_.clear();
     const VertexId* corners = m_.vertices(t);
@@ -92,20 +104,29 @@ void ConeMaker::collect_apexes(TetId t) {
     }
     std::sort(apexes_.begin(), apexes_.end());
     apexes_.erase(std::unique(apexes_.begin(), apexes_.end()), apexes_.end());
-    apexes_.erase(std::remove_if(apexes_.begin(), apexes_.end(),
-                                 [&](VertexId v) {
-                                     return v == kGhostVertex || std::find(corners, corners + 4, v) != corners + 4;
-                                 }),
-                  apexes_.end());
+    if (!apexes_.empty() && apexes_.back() == kGhostVertex) apexes_.pop_back();  // the largest id
+}
+
+// {t}, then the ball of each Steiner corner of t whose tetrahedra are all
+// in t's region (§6, Steiner points minimization: a cone from a vertex of
+// a cavity around the ball tetrahedralizes it without the point).
+void ConeMaker::collect_starts(TetId t, std::int32_t region) {
+    starts_.assign(1, Start{{t}, kGhostVertex});
+    for (int i = 0; i < 4; ++i) {
+        const VertexId v = m_.vertex(t, i);
+        if (!is_steiner(v) || c_.is_surface_vertex(v) || !mesh::ball(m_, v, t, ball_)) continue;
+        if (std::all_of(ball_.begin(), ball_.end(), [&](TetId b) { return c_.in_domain(b) && c_.region(b) == region; }))
+            starts_.push_back(Start{ball_, v});
+    }
 }
 
 // The cavity from `start` seen whole from `apex` (the header's growth);
 // false when it would cross a constraint face, leave the region or exceed
 // kMaxCavity.
-bool ConeMaker::grow(TetId start, VertexId apex, std::int32_t region) {
+bool ConeMaker::grow(const Start& start, VertexId apex, std::int32_t region) {
     marks_.new_round(m_.slot_count());
     cavity_.clear();
-    add_to_cavity(start);
+    for (TetId t : start.tets) add_to_cavity(t);
     const double* p = m_.point(apex);
     // Each tetrahedron taken in is scanned once; a face found blocking is
     // then interior (the tetrahedron behind it joins), so none is missed.
@@ -128,8 +149,9 @@ bool ConeMaker::grow(TetId start, VertexId apex, std::int32_t region) {
 }
 
 // The boundary faces of the cavity and their vertices; false when a vertex
-// other than `apex` is inside the cavity (on no boundary face).
-bool ConeMaker::collect_boundary(VertexId apex) {
+// other than `apex` and `inside` is inside the cavity (on no boundary
+// face), or `inside` (when not kGhostVertex) is on the boundary.
+bool ConeMaker::collect_boundary(VertexId apex, VertexId inside) {
     boundary_.clear();
     boundary_vertices_.clear();
     for (TetId t : cavity_) {
@@ -147,8 +169,8 @@ bool ConeMaker::collect_boundary(VertexId apex) {
     for (TetId t : cavity_)
         for (int i = 0; i < 4; ++i) {
             const VertexId w = m_.vertex(t, i);
-            if (w != apex && !std::binary_search(boundary_vertices_.begin(), boundary_vertices_.end(), w))
-                return false;
+            const bool on_boundary = std::binary_search(boundary_vertices_.begin(), boundary_vertices_.end(), w);
+            if (w == inside ? on_boundary : (w != apex && !on_boundary)) return false;
         }
     return true;
 }
@@ -201,32 +223,36 @@ bool ConeMaker::rate_cone(VertexId apex, const Rating& cavity, Rating& cone) con
     return true;
 }
 
-bool ConeMaker::improve(TetId t, std::vector<TetChange>* log) {
+bool ConeMaker::improve(TetId t, VertexId& suppressed, std::vector<TetChange>* log) {
+    suppressed = kGhostVertex;
     const std::int32_t region = c_.region(t);
     collect_apexes(t);
-    VertexId best = kGhostVertex;
+    collect_starts(t, region);
+    VertexId best = kGhostVertex, best_inside = kGhostVertex;
     Rating best_cone;
     std::size_t best_gain = 0;
     std::vector<TetId> best_cavity;
     std::vector<Face> best_boundary;
-    for (VertexId apex : apexes_) {
-        if (!grow(t, apex, region) || !collect_boundary(apex)) continue;
-        const Rating cavity = rate_cavity();
-        Rating cone;
-        if (!rate_cone(apex, cavity, cone)) continue;
-        const bool fewer_at_steiner = cone.bad_at_steiner < cavity.bad_at_steiner;
-        if (!fewer_at_steiner && !(cone.smallest_angle > cavity.smallest_angle * kAngleGain)) continue;
-        // The gain at Steiner points first, then the angle.
-        const std::size_t gain = cavity.bad_at_steiner - cone.bad_at_steiner;
-        if (best != kGhostVertex &&
-            (gain < best_gain || (gain == best_gain && !(cone.smallest_angle > best_cone.smallest_angle))))
-            continue;
-        best = apex;
-        best_cone = cone;
-        best_gain = gain;
-        best_cavity = cavity_;
-        best_boundary = boundary_;
-    }
+    for (const Start& start : starts_)
+        for (VertexId apex : apexes_) {
+            if (apex == start.inside || !grow(start, apex, region) || !collect_boundary(apex, start.inside)) continue;
+            const Rating cavity = rate_cavity();
+            Rating cone;
+            if (!rate_cone(apex, cavity, cone)) continue;
+            const bool fewer_at_steiner = cone.bad_at_steiner < cavity.bad_at_steiner;
+            if (!fewer_at_steiner && !(cone.smallest_angle > cavity.smallest_angle * kAngleGain)) continue;
+            // The gain at Steiner points first, then the angle.
+            const std::size_t gain = cavity.bad_at_steiner - cone.bad_at_steiner;
+            if (best != kGhostVertex &&
+                (gain < best_gain || (gain == best_gain && !(cone.smallest_angle > best_cone.smallest_angle))))
+                continue;
+            best = apex;
+            best_inside = start.inside;
+            best_cone = cone;
+            best_gain = gain;
+            best_cavity = cavity_;
+            best_boundary = boundary_;
+        }
     if (best == kGhostVertex) return false;
     std::vector<std::array<VertexId, 4>> fresh;
     for (const Face& f : best_boundary)
@@ -237,6 +263,7 @@ bool ConeMaker::improve(TetId t, std::vector<TetChange>* log) {
     std::vector<TetId> made;
     if (mesh::replace_tets(m_, best_cavity, fresh, &made) != mesh::ReplaceResult::kDone) return false;
     for (TetId s : made) c_.set_region(s, region);
+    suppressed = best_inside;
     if (log) {
         change.made = fresh;
         log->push_back(std::move(change));
@@ -246,18 +273,34 @@ bool ConeMaker::improve(TetId t, std::vector<TetChange>* log) {
 
 }  // namespace
 
-std::size_t improve_by_vertex_cones(RefineContext& c, const std::vector<char>& steiner, double below_degrees,
-                                    double threshold, std::vector<TetChange>* log) {
-    ConeMaker maker(c, steiner, threshold);
+std::size_t improve_by_vertex_cones(RefineContext& c, std::vector<VertexId>& steiner, double below_degrees,
+                                    double threshold, RefineStats& stats, bool& dropped,
+                                    std::vector<TetChange>* log) {
+    const std::vector<char> is_steiner = steiner_flags(c.m, steiner);
+    ConeMaker maker(c, is_steiner, threshold);
     const double q_bound = radius_ratio_bound_for_dihedral(below_degrees);
     std::size_t made = 0;
+    std::vector<VertexId> suppressed;
     const mesh::TetId slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
         if (!c.in_domain(t)) continue;
         const bool picked = has_dihedral_below(c.m, t, below_degrees, q_bound) ||
-                            (has_flagged_corner(c.m, t, steiner) && radius_ratio(c.m, t) < threshold);
-        if (picked && maker.improve(t, log)) ++made;
+                            (has_flagged_corner(c.m, t, is_steiner) && radius_ratio(c.m, t) < threshold);
+        VertexId gone = kGhostVertex;
+        if (!picked || !maker.improve(t, gone, log)) continue;
+        ++made;
+        if (gone != kGhostVertex) suppressed.push_back(gone);
     }
+    stats.vertex_cones += made;
+    if (suppressed.empty()) return made;
+    // The suppressed points are in no tetrahedron: the caller closes up
+    // the vertex ids (mesh/vertex_compaction.hpp).
+    std::sort(suppressed.begin(), suppressed.end());
+    steiner.erase(std::remove_if(steiner.begin(), steiner.end(),
+                                 [&](VertexId v) { return std::binary_search(suppressed.begin(), suppressed.end(), v); }),
+                  steiner.end());
+    stats.steiner_suppressed += suppressed.size();
+    dropped = true;
     return made;
 }
 

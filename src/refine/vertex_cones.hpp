@@ -12,21 +12,25 @@
 // elements connecting SP", which §6 wants at 0). Where a Steiner point
 // sits in a layer of the domain thinner than its triangles, a vertex on
 // the other side of its flat tetrahedra may take them over as a cone's
-// apex, and the Steiner point keeps fewer of them.
+// apex; and a cavity around the point's whole ball may have a cone
+// without the point, which then leaves the mesh (§6, "Steiner points
+// minimization", where the contractions of recover::suppress_vertex,
+// cones over the ball alone from a link vertex, found no way).
 //
 // For a tetrahedron t and an apex u (a vertex of the tetrahedra around
-// t's corners, not one of them): the cavity starts as {t}; each boundary
-// face of it that does not contain u and that u does not see strictly
-// (exact orient3d) takes the tetrahedron behind it in, never across a
-// constraint face, never out of t's region, up to kMaxCavity tetrahedra.
-// When every such face sees u, and no vertex but u is inside the cavity
-// (the cone would drop it from the mesh), the cone from u over those faces
-// is valid: each of its tetrahedra is positively oriented, and they tile
-// the cavity (a ray from u into the cavity leaves it through exactly one
-// boundary face, every crossing being outwards); replace_tets checks both
-// again exactly. No constraint face is removed (none is inside the
-// cavity), every new tetrahedron takes t's region, no point lies on the
-// surface that did not before.
+// t's corners): the cavity starts as {t}, or as the ball of a Steiner
+// corner s of t (all of it in t's region); each boundary face of it that
+// does not contain u and that u does not see strictly (exact orient3d)
+// takes the tetrahedron behind it in, never across a constraint face,
+// never out of t's region, while the cavity has fewer than kMaxCavity
+// tetrahedra. When every such face sees u, and no vertex but u (and s) is
+// inside the cavity (the cone would drop it from the mesh), the cone from
+// u over those faces is valid: each of its tetrahedra is positively
+// oriented, and they tile the cavity (a ray from u into the cavity leaves
+// it through exactly one boundary face, every crossing being outwards);
+// replace_tets checks both again exactly. No constraint face is removed
+// (none is inside the cavity), every new tetrahedron takes t's region, no
+// point lies on the surface that did not before, and only s may leave.
 //
 // A cone is kept when its tetrahedra are no worse where Table II counts:
 // no more of them under the threshold than the cavity had, no more of
@@ -44,15 +48,21 @@
 #include <vector>
 
 #include "refine/refine_context.hpp"
+#include "refine/refine_options.hpp"
 
 namespace cbr::refine {
 
 // One sweep over the tetrahedra of the bounded regions with a dihedral
 // angle below `below_degrees`, or with radius ratio below `threshold` and
-// a corner flagged in `steiner` (per vertex, steiner_flags); each gets the
-// best cone, if any is kept. Returns the number of cones made; `log`, for
-// tests, gets each one's replaced and made tetrahedra.
-std::size_t improve_by_vertex_cones(RefineContext& c, const std::vector<char>& steiner, double below_degrees,
-                                    double threshold, std::vector<TetChange>* log = nullptr);
+// a corner in `steiner`; each gets the best cone, if any is kept. Returns
+// the number of cones made, also added to stats.vertex_cones. The Steiner
+// points the cones took out of the mesh are erased from `steiner` (the
+// others keep their order) and counted in stats.steiner_suppressed, and
+// then `dropped` is set: they are in no tetrahedron, and the caller
+// compacts the vertex ids (mesh/vertex_compaction.hpp). `log`, for tests,
+// gets each cone's replaced and made tetrahedra.
+std::size_t improve_by_vertex_cones(RefineContext& c, std::vector<mesh::VertexId>& steiner, double below_degrees,
+                                    double threshold, RefineStats& stats, bool& dropped,
+                                    std::vector<TetChange>* log = nullptr);
 
 }  // namespace cbr::refine
