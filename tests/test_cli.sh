@@ -385,6 +385,15 @@ run_local() {
     [ $? -eq 1 ] && grep -q "usage: cbr" "$tmp/err" || fail "cbr without arguments: not a usage error"
     expect 0 "" --help && report_has "check IN" && report_has "exit codes: 0 success; 1 usage"
     expect 0 "" check --help && report_has "--allow-open" && report_has "exit codes"
+    # Every help text fits a terminal of 80 columns (the lists of formats
+    # it fills in included).
+    for help in "" check recover mesh demo; do
+        checks=$((checks + 1))
+        # shellcheck disable=SC2086 # the empty command must vanish
+        "$cbr" $help --help > "$tmp/out" 2> "$tmp/err"
+        wide=$(awk 'length > 80' "$tmp/out")
+        [ -z "$wide" ] || fail "cbr $help --help: lines over 80 columns: $wide"
+    done
     expect 1 "no input file" check
     expect 1 "unknown option '--frobnicate'" check --frobnicate x.off
     expect 1 "one input file only" check a.off b.off
