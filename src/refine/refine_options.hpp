@@ -47,7 +47,7 @@ struct RefineOptions {
     bool dihedral_chords_up_to_removed_edge = true;
     bool dihedral_smoothing = true;   // after the dihedral flips (smoothing.hpp), then those flips again
     bool angle_rescue = true;         // then: rescue_small_angles (sliver_removal.hpp)
-    bool vertex_cones = true;         // last: improve_by_vertex_cones (vertex_cones.hpp)
+    bool vertex_cones = true;         // last, and in the extra passes: improve_by_vertex_cones (vertex_cones.hpp)
 };
 
 // Refinement accepts a tetrahedron when each of its non-surface edges uv is
@@ -55,7 +55,7 @@ struct RefineOptions {
 // never split). Flips and smoothing keep this bound, except that a flip for
 // the smallest dihedral angle may replace an edge over it by chords no
 // longer than that edge, and a cone from a vertex (vertex_cones.hpp) may
-// make edges over it no longer than an edge over it that it removes.
+// make edges over it no longer than an edge of its cavity over it.
 inline constexpr double kEdgeFactor = 1.5;
 // An edge from a surface vertex u into the interior may always be as long as
 // kSurfaceReach times the largest circumradius of the input triangles at u

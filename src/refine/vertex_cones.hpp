@@ -1,10 +1,11 @@
-// Cone retetrahedralization, the last step of refinement: a cavity is
-// replaced by the cone from one of its own vertices over its boundary. No
-// point is added or moved; only the connectivity changes, as with a flip
-// (a 2-3 flip is the cone from one apex over the two tetrahedra, a 3-2
-// flip the cone from a ring vertex over the three), but the cavity is not
-// bounded to a shell or a face pair: it grows from the tetrahedron to be
-// removed towards the apex until the apex sees all of it.
+// Cone retetrahedralization, the last step of refinement and a step of its
+// extra passes for Steiner points (refine.cpp): a cavity is replaced by
+// the cone from one of its own vertices over its boundary. No point is
+// added or moved; only the connectivity changes, as with a flip (a 2-3
+// flip is the cone from one apex over the two tetrahedra, a 3-2 flip the
+// cone from a ring vertex over the three), but the cavity is not bounded
+// to a shell or a face pair: it grows from the tetrahedron to be removed
+// towards the apex until the apex sees all of it.
 //
 // Used for two kinds of tetrahedra the earlier steps leave: those with a
 // dihedral angle below a bound (Table II's minimum), and those below the
