@@ -7,6 +7,7 @@
 
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/cavity_boundary.hpp"
 #include "mesh/slot_marks.hpp"
 #include "mesh/surgery.hpp"
 #include "refine/quality_stats.hpp"
@@ -33,10 +34,7 @@ constexpr double kApexHeights[] = {0.8, 0.5, 0.3, 0.15};
 // candidate that the cavity does not see may have a visible stretch).
 constexpr double kSteps[] = {1.0, 0.5, 0.25, 0.125, 0.0625};
 
-struct Face {
-    std::array<VertexId, 3> v;  // kFaceVertices order: the cavity is on the positive side
-    bool constrained;
-};
+using Face = mesh::CavityFace;
 
 class Relocator {
 public:
@@ -72,21 +70,7 @@ public:
 // The boundary faces of the cavity; false when a vertex other than v would
 // be inside the cavity (the star would drop it from the mesh).
 bool Relocator::collect_boundary(VertexId v) {
-    boundary_.clear();
-    boundary_vertices_.clear();
-    for (TetId t : cavity_) {
-        const VertexId* w = m_.vertices(t);
-        for (int f = 0; f < 4; ++f) {
-            const bool constrained = m_.is_constrained(t, f);
-            if (!constrained && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
-            const int* k = kFaceVertices[f];
-            boundary_.push_back({{w[k[0]], w[k[1]], w[k[2]]}, constrained});
-            for (int i = 0; i < 3; ++i) boundary_vertices_.push_back(w[k[i]]);
-        }
-    }
-    std::sort(boundary_vertices_.begin(), boundary_vertices_.end());
-    boundary_vertices_.erase(std::unique(boundary_vertices_.begin(), boundary_vertices_.end()),
-                             boundary_vertices_.end());
+    mesh::cavity_boundary(m_, cavity_, [&](TetId t) { return in_cavity(t); }, boundary_, boundary_vertices_);
     for (TetId t : cavity_)
         for (int i = 0; i < 4; ++i) {
             const VertexId w = m_.vertex(t, i);

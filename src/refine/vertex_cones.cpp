@@ -5,6 +5,7 @@
 
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/cavity_boundary.hpp"
 #include "mesh/slot_marks.hpp"
 #include "mesh/surgery.hpp"
 #include "refine/quality_stats.hpp"
@@ -26,7 +27,7 @@ constexpr std::size_t kMaxCavity = 64;
 // this factor (as the points for small angles, sliver_removal.cpp).
 constexpr double kAngleGain = 1.0 + 1e-3;
 
-using Face = std::array<VertexId, 3>;  // kFaceVertices order: the cavity is on the positive side
+using Face = mesh::CavityFace;
 
 // What Table II counts in a set of tetrahedra.
 struct Rating {
@@ -152,20 +153,7 @@ bool ConeMaker::grow(const Start& start, VertexId apex, std::int32_t region) {
 // other than `apex` and `inside` is inside the cavity (on no boundary
 // face), or `inside` (when not kGhostVertex) is on the boundary.
 bool ConeMaker::collect_boundary(VertexId apex, VertexId inside) {
-    boundary_.clear();
-    boundary_vertices_.clear();
-    for (TetId t : cavity_) {
-        const VertexId* w = m_.vertices(t);
-        for (int f = 0; f < 4; ++f) {
-            if (!m_.is_constrained(t, f) && in_cavity(facet_tet(m_.neighbor(t, f)))) continue;
-            const int* k = kFaceVertices[f];
-            boundary_.push_back({w[k[0]], w[k[1]], w[k[2]]});
-            for (int i = 0; i < 3; ++i) boundary_vertices_.push_back(w[k[i]]);
-        }
-    }
-    std::sort(boundary_vertices_.begin(), boundary_vertices_.end());
-    boundary_vertices_.erase(std::unique(boundary_vertices_.begin(), boundary_vertices_.end()),
-                             boundary_vertices_.end());
+    mesh::cavity_boundary(m_, cavity_, [&](TetId t) { return in_cavity(t); }, boundary_, boundary_vertices_);
     for (TetId t : cavity_)
         for (int i = 0; i < 4; ++i) {
             const VertexId w = m_.vertex(t, i);
@@ -204,19 +192,19 @@ bool ConeMaker::rate_cone(VertexId apex, const Rating& cavity, Rating& cone) con
     const double* p = m_.point(apex);
     const bool apex_steiner = is_steiner(apex);
     for (const Face& f : boundary_) {
-        if (f[0] == apex || f[1] == apex || f[2] == apex) continue;
-        const double* a = m_.point(f[0]);
-        const double* b = m_.point(f[1]);
-        const double* d = m_.point(f[2]);
+        if (f.v[0] == apex || f.v[1] == apex || f.v[2] == apex) continue;
+        const double* a = m_.point(f.v[0]);
+        const double* b = m_.point(f.v[1]);
+        const double* d = m_.point(f.v[2]);
         const double q = radius_ratio(a, b, d, p);
         if (q < threshold_ && q < cavity.worst_ratio) return false;
-        count(q, apex_steiner || is_steiner(f[0]) || is_steiner(f[1]) || is_steiner(f[2]), cone);
+        count(q, apex_steiner || is_steiner(f.v[0]) || is_steiner(f.v[1]) || is_steiner(f.v[2]), cone);
         if (cone.bad > cavity.bad || cone.bad_at_steiner > cavity.bad_at_steiner) return false;
         cone.smallest_angle = std::min(cone.smallest_angle, min_dihedral(a, b, d, p));
     }
     for (const Face& f : boundary_) {
-        if (f[0] == apex || f[1] == apex || f[2] == apex) continue;
-        for (VertexId w : f)
+        if (f.v[0] == apex || f.v[1] == apex || f.v[2] == apex) continue;
+        for (VertexId w : f.v)
             if (!c_.edge_within_size(apex, w) && squared_distance(p, m_.point(w)) > cavity.longest_over_bound2)
                 return false;
     }
@@ -256,7 +244,7 @@ bool ConeMaker::improve(TetId t, VertexId& suppressed, std::vector<TetChange>* l
     if (best == kGhostVertex) return false;
     std::vector<std::array<VertexId, 4>> fresh;
     for (const Face& f : best_boundary)
-        if (f[0] != best && f[1] != best && f[2] != best) fresh.push_back({f[0], f[1], f[2], best});
+        if (f.v[0] != best && f.v[1] != best && f.v[2] != best) fresh.push_back({f.v[0], f.v[1], f.v[2], best});
     TetChange change;
     if (log)
         for (TetId s : best_cavity) change.replaced.push_back(corners_of(m_, s));
