@@ -39,11 +39,6 @@ struct Rating {
     double longest_over_bound2 = 0;
 };
 
-double squared_distance(const double* a, const double* b) {
-    const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return x * x + y * y + z * z;
-}
-
 class ConeMaker {
 public:
     ConeMaker(RefineContext& c, const std::vector<char>& steiner, double threshold)
@@ -169,8 +164,7 @@ Rating ConeMaker::rate_cavity() const {
         const VertexId* w = m_.vertices(t);
         const double* p[4];
         corner_points(m_, t, p);
-        count(radius_ratio(p[0], p[1], p[2], p[3]), is_steiner(w[0]) || is_steiner(w[1]) || is_steiner(w[2]) ||
-                                                        is_steiner(w[3]), r);
+        count(radius_ratio(p[0], p[1], p[2], p[3]), has_flagged_corner(m_, t, steiner_), r);
         r.smallest_angle = std::min(r.smallest_angle, min_dihedral(p[0], p[1], p[2], p[3]));
         for (int i = 0; i < 4; ++i)
             for (int j = i + 1; j < 4; ++j)
