@@ -38,6 +38,18 @@ void check_same(const cbr::mesh::CheckReport& one, const cbr::mesh::CheckReport&
 
 const int kThreadCounts[] = {2, 3, 8};
 
+// Every row of two Table II tables equal, bit for bit.
+void check_same_table(const cbr::refine::QualityTable& a, const cbr::refine::QualityTable& b) {
+    CHECK(a.tets == b.tets);
+    CHECK(a.average == b.average);  // summed in slot order
+    CHECK(a.minimum == b.minimum);
+    CHECK(a.percent_above_0_4 == b.percent_above_0_4);
+    CHECK(a.percent_below_0_1 == b.percent_below_0_1);
+    CHECK(a.bad_touching_steiner == b.bad_touching_steiner);
+    CHECK(a.dihedral_min_deg == b.dihedral_min_deg);
+    CHECK(a.dihedral_max_deg == b.dihedral_max_deg);
+}
+
 }  // namespace
 
 TEST_CASE("threads: chunks cover the items once, in order, and only when large enough") {
@@ -125,25 +137,31 @@ TEST_CASE("threads: the triangles are found at the same facets") {
     }
 }
 
-TEST_CASE("threads: Table II of the refined mesh, bit for bit") {
+TEST_CASE("threads: Table II of the refined mesh, bit for bit, and of each region") {
     const TetMesh m = large_mesh();
     std::vector<std::int32_t> region(m.slot_count(), 0);
-    for (TetId t = 0; t < m.slot_count(); ++t) region[t] = t % 5 == 0 ? 0 : 1;  // some not measured
+    for (TetId t = 0; t < m.slot_count(); ++t) region[t] = t % 5 == 0 ? 0 : 1 + static_cast<std::int32_t>(t % 3);
     std::vector<VertexId> steiner;
     for (VertexId v = 0; v < m.vertex_count(); v += 97) steiner.push_back(v);
-    const cbr::refine::QualityTable one = cbr::refine::measure_quality(m, region, steiner, 1);
+    std::vector<cbr::refine::QualityTable> by_region;
+    const cbr::refine::QualityTable one = cbr::refine::measure_quality(m, region, steiner, 1, &by_region);
     REQUIRE(one.tets > 3 * cbr::mesh::kMinChunk);
     REQUIRE(one.bad_touching_steiner > 0);
+    REQUIRE(by_region.size() == 4);
+    CHECK(by_region[0].tets == 0);  // the exterior is not measured
+    CHECK(by_region[1].tets + by_region[2].tets + by_region[3].tets == one.tets);
+    // Each region's table is the table of that region alone.
+    for (std::int32_t r = 1; r <= 3; ++r) {
+        CAPTURE(r);
+        std::vector<std::int32_t> only(region.size());
+        for (std::size_t t = 0; t < region.size(); ++t) only[t] = region[t] == r ? r : 0;
+        check_same_table(by_region[static_cast<std::size_t>(r)], cbr::refine::measure_quality(m, only, steiner, 1));
+    }
     for (int threads : kThreadCounts) {
         CAPTURE(threads);
-        const cbr::refine::QualityTable other = cbr::refine::measure_quality(m, region, steiner, threads);
-        CHECK(other.tets == one.tets);
-        CHECK(other.average == one.average);  // summed in slot order
-        CHECK(other.minimum == one.minimum);
-        CHECK(other.percent_above_0_4 == one.percent_above_0_4);
-        CHECK(other.percent_below_0_1 == one.percent_below_0_1);
-        CHECK(other.bad_touching_steiner == one.bad_touching_steiner);
-        CHECK(other.dihedral_min_deg == one.dihedral_min_deg);
-        CHECK(other.dihedral_max_deg == one.dihedral_max_deg);
+        std::vector<cbr::refine::QualityTable> other_by_region;
+        check_same_table(cbr::refine::measure_quality(m, region, steiner, threads, &other_by_region), one);
+        REQUIRE(other_by_region.size() == by_region.size());
+        for (std::size_t r = 0; r < by_region.size(); ++r) check_same_table(other_by_region[r], by_region[r]);
     }
 }

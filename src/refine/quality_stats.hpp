@@ -37,7 +37,13 @@ inline bool has_flagged_corner(const mesh::TetMesh& m, mesh::TetId t, const std:
 // the Steiner points of recovery (internal ids). All zero without any
 // tetrahedron. `threads`: how many threads may share the measures
 // (mesh/chunks.hpp); the table is the same, bit for bit, with any number.
+// With `by_region`, also the table of each region r over its tetrahedra
+// alone in (*by_region)[r], for r from 0 to the largest region (entry 0,
+// the exterior, and the entries of regions without a tetrahedron all
+// zero); each is the table of a pass over that region's tetrahedra, bit
+// for bit.
 QualityTable measure_quality(const mesh::TetMesh& m, const std::vector<std::int32_t>& region_of_slot,
-                             const std::vector<mesh::VertexId>& steiner, int threads = 1);
+                             const std::vector<mesh::VertexId>& steiner, int threads = 1,
+                             std::vector<QualityTable>* by_region = nullptr);
 
 }  // namespace cbr::refine
