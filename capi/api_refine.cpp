@@ -38,6 +38,21 @@ bool refine_stat(const cbr_mesh& mesh, int key, double& value) {
     }
 }
 
+// The Table II keys of cbr_mesh_get_region_stat, from one region's table.
+bool region_stat(const cbr::refine::QualityTable& q, int key, double& value) {
+    switch (key) {
+        case CBR_STAT_QUALITY_AVERAGE: value = q.average; return true;
+        case CBR_STAT_QUALITY_MIN: value = q.minimum; return true;
+        case CBR_STAT_PERCENT_ABOVE_0_4: value = q.percent_above_0_4; return true;
+        case CBR_STAT_PERCENT_BELOW_0_1: value = q.percent_below_0_1; return true;
+        case CBR_STAT_BAD_TOUCHING_STEINER: value = static_cast<double>(q.bad_touching_steiner); return true;
+        case CBR_STAT_DIHEDRAL_MIN: value = q.dihedral_min_deg; return true;
+        case CBR_STAT_DIHEDRAL_MAX: value = q.dihedral_max_deg; return true;
+        case CBR_STAT_REFINE_TETS: value = static_cast<double>(q.tets); return true;
+        default: return false;
+    }
+}
+
 }  // namespace cbr::capi
 
 extern "C" {
@@ -79,11 +94,32 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         mesh->recovery.steiner = std::move(steiner);  // what cbr_mesh_steiner_points reports from now on
         mesh->recovery.interior =
             cbr::capi::interior_points(*mesh, mesh->recovery.interior.caller, mesh->recovery.regions.of_tet);
-        state.quality =
-            cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner, cbr::capi::thread_count(*mesh));
+        state.quality = cbr::refine::measure_quality(m, mesh->recovery.regions.of_tet, rec.steiner,
+                                                     cbr::capi::thread_count(*mesh), &state.region_quality);
         state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         state.done = true;
         mesh->refine = std::move(state);
+        return CBR_OK;
+    });
+}
+
+CBR_API int cbr_mesh_get_region_stat(const cbr_mesh* mesh, int32_t region, int key, double* value) {
+    return guarded(mesh, "cbr_mesh_get_region_stat", [&] {
+        require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
+        require(value != nullptr, CBR_ERR_INVALID_ARGUMENT, "value is NULL");
+        const int regions = mesh->recovery.done ? mesh->recovery.regions.count : 0;
+        require(region >= 1 && region < regions, CBR_ERR_INVALID_ARGUMENT,
+                "region " + std::to_string(region) + " is not a bounded region: " +
+                    (regions > 1 ? "they are 1 to " + std::to_string(regions - 1)
+                                 : std::string("there is none (call cbr_mesh_recover_faces first)")));
+        const std::vector<cbr::refine::QualityTable>& tables = mesh->refine.region_quality;
+        const auto r = static_cast<std::size_t>(region);
+        const cbr::refine::QualityTable table = r < tables.size() ? tables[r] : cbr::refine::QualityTable{};
+        if (!cbr::capi::region_stat(table, key, *value))
+            throw ApiError{CBR_ERR_INVALID_ARGUMENT,
+                           "statistic key " + std::to_string(key) +
+                               " has no value per region (CBR_STAT_QUALITY_AVERAGE to CBR_STAT_DIHEDRAL_MAX, "
+                               "and CBR_STAT_REFINE_TETS, do)"};
         return CBR_OK;
     });
 }

@@ -54,6 +54,7 @@ struct RefineState {
     bool done = false;
     cbr::refine::RefineStats stats;
     cbr::refine::QualityTable quality;
+    std::vector<cbr::refine::QualityTable> region_quality;  // by region (0: the exterior, all zero)
     double seconds = 0;
 };
 

@@ -1978,6 +1978,110 @@ TEST_CASE("cbr_mesh_refine: through the C API") {
     CHECK(cbr_mesh_refine(nullptr) == CBR_ERR_INVALID_ARGUMENT);
 }
 
+TEST_CASE("cbr_mesh_get_region_stat: Table II of each bounded region alone") {
+    const Surface s = nine_spheres();  // ten bounded regions: the box's inside and the nine balls
+    const auto n = static_cast<std::int64_t>(s.xyz.size() / 3);
+    cbr_mesh* m = nullptr;
+    REQUIRE(cbr_mesh_create(&m) == CBR_OK);
+    REQUIRE(cbr_mesh_insert_points(m, n, s.xyz.data()) == CBR_OK);
+    double v = -1;
+    // Before recovery there is no region.
+    CHECK(cbr_mesh_get_region_stat(m, 1, CBR_STAT_QUALITY_AVERAGE, &v) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(cbr_mesh_last_error(m)).find("cbr_mesh_recover_faces") != std::string::npos);
+    REQUIRE(cbr_mesh_recover_faces(m, static_cast<std::int64_t>(s.tris.size() / 3), s.tris.data(), nullptr) == CBR_OK);
+    double region_count = 0;
+    REQUIRE(cbr_mesh_get_stat(m, CBR_STAT_REGION_COUNT, &region_count) == CBR_OK);
+    REQUIRE(region_count == 11);
+    // Before refinement: 0, as cbr_mesh_get_stat.
+    CHECK(cbr_mesh_get_region_stat(m, 1, CBR_STAT_REFINE_TETS, &v) == CBR_OK);
+    CHECK(v == 0);
+    // Not a bounded region, not a key of Table II, NULL.
+    for (std::int32_t bad_region : {0, 11, -1}) {
+        CAPTURE(bad_region);
+        CHECK(cbr_mesh_get_region_stat(m, bad_region, CBR_STAT_QUALITY_AVERAGE, &v) == CBR_ERR_INVALID_ARGUMENT);
+        CHECK(std::string(cbr_mesh_last_error(m)).find("they are 1 to 10") != std::string::npos);
+    }
+    for (int bad_key : {CBR_STAT_FIELD_POINTS, CBR_STAT_REGION_COUNT, 19, 0}) {
+        CAPTURE(bad_key);
+        CHECK(cbr_mesh_get_region_stat(m, 1, bad_key, &v) == CBR_ERR_INVALID_ARGUMENT);
+    }
+    CHECK(cbr_mesh_get_region_stat(m, 1, CBR_STAT_QUALITY_AVERAGE, nullptr) == CBR_ERR_INVALID_ARGUMENT);
+    CHECK(cbr_mesh_get_region_stat(nullptr, 1, CBR_STAT_QUALITY_AVERAGE, &v) == CBR_ERR_INVALID_ARGUMENT);
+
+    REQUIRE(cbr_mesh_set_param(m, CBR_PARAM_REFINE_SIZE, 0.2) == CBR_OK);
+    REQUIRE(cbr_mesh_refine(m) == CBR_OK);
+    // Table II of each region measured here from what the caller gets: the
+    // points, the tetrahedra (in their order), their regions and the
+    // Steiner points.
+    const std::int64_t np = cbr_mesh_point_count(m), nt = cbr_mesh_tet_count(m);
+    std::vector<double> xyz(3 * static_cast<std::size_t>(np));
+    std::vector<std::int64_t> t(4 * static_cast<std::size_t>(nt));
+    std::vector<std::int32_t> regions(static_cast<std::size_t>(nt));
+    std::vector<std::int64_t> steiner(static_cast<std::size_t>(cbr_mesh_steiner_count(m)));
+    REQUIRE(cbr_mesh_get_points(m, xyz.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_get_tets(m, t.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_get_tet_regions(m, regions.data()) == CBR_OK);
+    REQUIRE(cbr_mesh_steiner_points(m, steiner.data()) == CBR_OK);
+    std::set<std::int64_t> is_steiner(steiner.begin(), steiner.end());
+    struct Expected {
+        double tets = 0, sum = 0, q_min = 1, above = 0, below = 0, bad_at_steiner = 0, lo = 180, hi = 0;
+    };
+    std::vector<Expected> expected(11);
+    std::size_t outside = 0;  // tetrahedra not in a bounded region
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        if (regions[i] < 1 || regions[i] > 10) {
+            ++outside;
+            continue;
+        }
+        const auto P = [&](std::size_t k) { return &xyz[3 * static_cast<std::size_t>(t[4 * i + k])]; };
+        const double q = cbr::refine::radius_ratio(P(0), P(1), P(2), P(3));
+        double lo = 0, hi = 0;
+        cbr::refine::dihedral_range(P(0), P(1), P(2), P(3), lo, hi);
+        Expected& e = expected[static_cast<std::size_t>(regions[i])];
+        e.tets += 1;
+        e.sum += q;
+        e.q_min = std::min(e.q_min, q);
+        e.above += q > 0.4;
+        e.below += q < 0.1;
+        const bool at_steiner = std::any_of(&t[4 * i], &t[4 * i] + 4, [&](std::int64_t id) { return is_steiner.count(id) > 0; });
+        e.bad_at_steiner += q < 0.1 && at_steiner;
+        e.lo = std::min(e.lo, lo);
+        e.hi = std::max(e.hi, hi);
+    }
+    CHECK(outside == 0);
+    const auto get = [&](std::int32_t r, int key) {
+        double value = std::nan("");
+        CHECK(cbr_mesh_get_region_stat(m, r, key, &value) == CBR_OK);
+        return value;
+    };
+    double all_tets = 0;
+    REQUIRE(cbr_mesh_get_stat(m, CBR_STAT_REFINE_TETS, &all_tets) == CBR_OK);
+    double tets_sum = 0, weighted_average = 0, q_min = 1;
+    for (std::int32_t r = 1; r <= 10; ++r) {
+        CAPTURE(r);
+        const Expected& e = expected[static_cast<std::size_t>(r)];
+        REQUIRE(e.tets > 0);
+        CHECK(get(r, CBR_STAT_REFINE_TETS) == e.tets);
+        CHECK(get(r, CBR_STAT_QUALITY_AVERAGE) == e.sum / e.tets);  // summed in the same order
+        CHECK(get(r, CBR_STAT_QUALITY_MIN) == e.q_min);
+        CHECK(get(r, CBR_STAT_PERCENT_ABOVE_0_4) == doctest::Approx(100 * e.above / e.tets).epsilon(1e-12));
+        CHECK(get(r, CBR_STAT_PERCENT_BELOW_0_1) == doctest::Approx(100 * e.below / e.tets).epsilon(1e-12));
+        CHECK(get(r, CBR_STAT_BAD_TOUCHING_STEINER) == e.bad_at_steiner);
+        CHECK(get(r, CBR_STAT_DIHEDRAL_MIN) == e.lo);
+        CHECK(get(r, CBR_STAT_DIHEDRAL_MAX) == e.hi);
+        tets_sum += e.tets;
+        weighted_average += e.sum;
+        q_min = std::min(q_min, e.q_min);
+    }
+    // The regions together are the whole of cbr_mesh_get_stat's table.
+    CHECK(tets_sum == all_tets);
+    double average = 0, minimum = 0;
+    REQUIRE(cbr_mesh_get_stat(m, CBR_STAT_QUALITY_AVERAGE, &average) == CBR_OK);
+    REQUIRE(cbr_mesh_get_stat(m, CBR_STAT_QUALITY_MIN, &minimum) == CBR_OK);
+    CHECK(average == doctest::Approx(weighted_average / tets_sum).epsilon(1e-12));
+    CHECK(minimum == q_min);
+    cbr_mesh_destroy(m);
+}
 
 TEST_CASE("cbr_mesh_refine: CBR_STAT_REFINE_OVERSIZE_TETS counts the tetrahedra left over the size bound") {
     // A plate 30 x 30 x 1 of twelve triangles: the tetrahedra across it

@@ -150,7 +150,7 @@ module cbr
   public :: cbr_mesh_defect_listed, cbr_mesh_get_defect
   public :: cbr_mesh_recover_faces, cbr_mesh_steiner_count, cbr_mesh_steiner_points
   public :: cbr_mesh_get_tet_regions, cbr_mesh_get_stat
-  public :: cbr_mesh_refine
+  public :: cbr_mesh_refine, cbr_mesh_get_region_stat
 
   ! Fortran helper.
   public :: cbr_f_string
@@ -313,6 +313,18 @@ module cbr
       type(c_ptr), value, intent(in) :: mesh
       integer(c_int) :: status
     end function cbr_mesh_refine
+
+    ! int cbr_mesh_get_region_stat(const cbr_mesh *mesh, int32_t region,
+    !                              int key, double *value);
+    function cbr_mesh_get_region_stat(mesh, region, key, value) &
+        bind(C, name="cbr_mesh_get_region_stat") result(status)
+      import :: c_ptr, c_int, c_int32_t, c_double
+      type(c_ptr), value, intent(in) :: mesh
+      integer(c_int32_t), value, intent(in) :: region
+      integer(c_int), value, intent(in) :: key
+      real(c_double), intent(out) :: value
+      integer(c_int) :: status
+    end function cbr_mesh_get_region_stat
 
     ! int cbr_mesh_check_faces(cbr_mesh *mesh, int64_t count,
     !                          const int64_t *tris);

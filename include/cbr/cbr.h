@@ -408,6 +408,17 @@ CBR_API int cbr_mesh_get_stat(const cbr_mesh *mesh, int key, double *value);
      CBR_ERR_INTERNAL          a check of the result failed (a bug). */
 CBR_API int cbr_mesh_refine(cbr_mesh *mesh);
 
+/* Reads the Table II statistic `key` of one bounded region alone: over the
+   tetrahedra that cbr_mesh_get_tet_regions puts in `region` (1 to
+   CBR_STAT_REGION_COUNT - 1), after cbr_mesh_refine. The keys:
+   CBR_STAT_QUALITY_AVERAGE to CBR_STAT_DIHEDRAL_MAX, and
+   CBR_STAT_REFINE_TETS (the region's tetrahedra); cbr_mesh_get_stat gives
+   them over all bounded regions. 0 before cbr_mesh_refine.
+   CBR_ERR_INVALID_ARGUMENT for a NULL mesh or value, another key, or a
+   region that is not a bounded region of the recovered mesh (before
+   cbr_mesh_recover_faces, none is). */
+CBR_API int cbr_mesh_get_region_stat(const cbr_mesh *mesh, int32_t region, int key, double *value);
+
 /* ------------------------------------------------------------------------ */
 /* Surface checks                                                           */
 /* ------------------------------------------------------------------------ */
