@@ -83,7 +83,9 @@ private:
     mesh::SlotMarks marks_;
     std::vector<TetId> ball_, cavity_;
     std::vector<Start> starts_;
-    std::vector<VertexId> apexes_, boundary_vertices_;
+    std::vector<VertexId> apexes_;
+    static constexpr std::uint8_t kOnBoundary = 1u << 0;
+    mesh::SlotMarks vertex_marks_;  // per vertex: kOnBoundary (collect_boundary)
     std::vector<Face> boundary_;
 };
 
@@ -148,11 +150,11 @@ bool ConeMaker::grow(const Start& start, VertexId apex, std::int32_t region) {
 // other than `apex` and `inside` is inside the cavity (on no boundary
 // face), or `inside` (when not kGhostVertex) is on the boundary.
 bool ConeMaker::collect_boundary(VertexId apex, VertexId inside) {
-    mesh::cavity_boundary(m_, cavity_, [&](TetId t) { return in_cavity(t); }, boundary_, boundary_vertices_);
+    mesh::cavity_boundary(m_, cavity_, [&](TetId t) { return in_cavity(t); }, boundary_, vertex_marks_, kOnBoundary);
     for (TetId t : cavity_)
         for (int i = 0; i < 4; ++i) {
             const VertexId w = m_.vertex(t, i);
-            const bool on_boundary = std::binary_search(boundary_vertices_.begin(), boundary_vertices_.end(), w);
+            const bool on_boundary = vertex_marks_.has(w, kOnBoundary);
             if (w == inside ? on_boundary : (w != apex && !on_boundary)) return false;
         }
     return true;
