@@ -62,7 +62,8 @@ CBR_API int cbr_mesh_refine(cbr_mesh* mesh) {
         require(mesh != nullptr, CBR_ERR_INVALID_ARGUMENT, "mesh is NULL");
         require(mesh->recovery.done, CBR_ERR_INVALID_ARGUMENT,
                 "no recovered boundary: call cbr_mesh_recover_faces (successfully) first");
-        const cbr::refine::RefineOptions& options = mesh->refine_options;
+        cbr::refine::RefineOptions options = mesh->refine_options;
+        options.threads = cbr::capi::thread_count(*mesh);
         require(options.size_from_surface || options.target_size > 0, CBR_ERR_INVALID_ARGUMENT,
                 "no sizing field: CBR_PARAM_REFINE_SIZE_FROM_SURFACE is 0 and CBR_PARAM_REFINE_SIZE is 0");
         const auto start = std::chrono::steady_clock::now();

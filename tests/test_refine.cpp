@@ -1830,8 +1830,9 @@ TEST_CASE("refine: common3d-fandisk's sharp features keep no sliver") {
 
 TEST_CASE("CBR_PARAM_THREADS: the same recovery and refinement, bit for bit, with any number") {
     // The nine-sphere box refined at size 0.1: enough tetrahedra for the
-    // read-only passes to run in chunks (mesh/chunks.hpp); test_threads
-    // checks each pass on its own.
+    // read-only passes to run in chunks (mesh/chunks.hpp), and the
+    // smoothing sweeps move two halves' vertices at once
+    // (refine/vertex_halves.hpp); test_threads checks each on its own.
     const Surface s = nine_spheres();
     const auto n = static_cast<std::int64_t>(s.xyz.size() / 3);
     const auto count = static_cast<std::int64_t>(s.tris.size() / 3);

@@ -2,7 +2,9 @@
 // chunks (mesh/chunks.hpp), give the answer of one pass, bit for bit,
 // whatever the number of threads: the validity check (its listed problems
 // in slot order and its counts), the lookup of triangles among the faces,
-// the Table II of cbr_mesh_refine.
+// the Table II of cbr_mesh_refine. The smoothing sweeps move the vertices
+// of two halves at once (refine/vertex_halves.hpp): the split is checked
+// here, the same mesh with any number of threads in test_refine.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -11,11 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "mesh/ball_shell.hpp"
 #include "mesh/chunks.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh_test_util.hpp"
 #include "recover/constraint_faces.hpp"
 #include "refine/quality_stats.hpp"
+#include "refine/vertex_halves.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -164,4 +168,49 @@ TEST_CASE("threads: Table II of the refined mesh, bit for bit, and of each regio
         REQUIRE(other_by_region.size() == by_region.size());
         for (std::size_t r = 0; r < by_region.size(); ++r) check_same_table(other_by_region[r], by_region[r]);
     }
+}
+
+TEST_CASE("threads: the smoothing halves: no edge joins inner vertices of both, every vertex once") {
+    const TetMesh m = large_mesh();
+    const cbr::mesh::VertexBalls balls(m);
+    std::vector<VertexId> moving;  // every other vertex: the others stay, as surface vertices do
+    for (VertexId v = 0; v < m.vertex_count(); v += 2)
+        if (!balls.empty(v)) moving.push_back(v);
+    const cbr::refine::VertexHalves halves = cbr::refine::split_in_halves(m, moving, balls);
+    // Each list in increasing id order; together, `moving` once each.
+    std::vector<VertexId> all;
+    for (const std::vector<VertexId>* list : {&halves.inner[0], &halves.inner[1], &halves.border}) {
+        CHECK(std::is_sorted(list->begin(), list->end()));
+        all.insert(all.end(), list->begin(), list->end());
+    }
+    std::sort(all.begin(), all.end());
+    CHECK(all == moving);
+    // No tetrahedron has a corner in each half's inner vertices; a vertex
+    // that does not move may join them.
+    std::vector<int> side(m.vertex_count(), -1);
+    for (int h = 0; h < 2; ++h)
+        for (VertexId v : halves.inner[static_cast<std::size_t>(h)]) side[v] = h;
+    std::size_t joining = 0;
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        bool has[2] = {false, false};
+        for (int i = 0; i < 4; ++i) {
+            const VertexId u = m.vertex(t, i);
+            if (u != cbr::mesh::kGhostVertex && side[u] >= 0) has[side[u]] = true;
+        }
+        joining += has[0] && has[1];
+    }
+    CHECK(joining == 0);
+    // Split at the median, through the middle of a cube of points: halves
+    // of equal work, and a thin border between them.
+    const std::size_t half0 = halves.inner[0].size(), half1 = halves.inner[1].size();
+    CHECK(half0 > moving.size() / 3);
+    CHECK(half1 > moving.size() / 3);
+    CHECK(halves.border.size() > 0);
+    CHECK(halves.border.size() < moving.size() / 5);
+    // Nothing to split.
+    const cbr::refine::VertexHalves none = cbr::refine::split_in_halves(m, {}, balls);
+    CHECK(none.inner[0].empty());
+    CHECK(none.inner[1].empty());
+    CHECK(none.border.empty());
 }

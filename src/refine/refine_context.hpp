@@ -71,6 +71,11 @@ public:
     // and would fail again.
     void start_pass() { ++pass_; }
     void touch(mesh::TetId t);
+    // Room for the stamp of every slot of m, so that touch() does not grow
+    // the array: before threads touch tetrahedra at once.
+    void reserve_stamps() {
+        if (stamp_.size() < m.slot_count()) stamp_.resize(m.slot_count(), 0);
+    }
     // The current pass, and whether t was created or reshaped in that pass
     // or after it.
     std::uint32_t pass() const { return pass_; }

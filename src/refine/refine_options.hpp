@@ -33,6 +33,9 @@ struct RefineOptions {
     double quality_bound = 1.414;
     // Optimisation passes (each: quality flips, then smoothing); 0 = none.
     int optimisation_passes = 3;
+    // Threads the smoothing sweeps may use (CBR_PARAM_THREADS; the mesh is
+    // the same with any number: vertex_halves.hpp).
+    int threads = 1;
     // For tests: switch off one part of the optimisation.
     bool flips = true;
     bool smoothing = true;

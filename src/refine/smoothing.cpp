@@ -9,9 +9,11 @@
 
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/chunks.hpp"
 #include "mesh/slot_marks.hpp"
 #include "refine/compass_search.hpp"
 #include "refine/tet_measures.hpp"
+#include "refine/vertex_halves.hpp"
 
 namespace cbr::refine {
 namespace {
@@ -436,13 +438,23 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
 
 std::size_t smooth_vertices(RefineContext& c) {
     const mesh::VertexBalls balls(c.m);  // moves change no tetrahedron
+    std::vector<VertexId> moving;
+    for (VertexId v = 0; v < c.m.vertex_count(); ++v)
+        if (c.is_movable(v) && !c.is_surface_vertex(v) && !balls.empty(v)) moving.push_back(v);
+    // The two halves' inner vertices at once (one Smoother, with its
+    // scratch storage, each), then the border (vertex_halves.hpp).
+    const VertexHalves halves = split_in_halves(c.m, moving, balls);
+    c.reserve_stamps();
+    std::array<std::size_t, 2> moved = {0, 0};
+    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Smoother s(c);
+        for (std::size_t h = begin; h < end; ++h)
+            for (VertexId v : halves.inner[h]) moved[h] += s.smooth(v, balls);
+    });
     Smoother s(c);
-    std::size_t moved = 0;
-    for (VertexId v = 0; v < c.m.vertex_count(); ++v) {
-        if (!c.is_movable(v) || c.is_surface_vertex(v) || balls.empty(v)) continue;
-        moved += s.smooth(v, balls);
-    }
-    return moved;
+    std::size_t border_moved = 0;
+    for (VertexId v : halves.border) border_moved += s.smooth(v, balls);
+    return moved[0] + moved[1] + border_moved;
 }
 
 }  // namespace cbr::refine

@@ -21,7 +21,10 @@
 namespace cbr::refine {
 
 // One sweep over the movable vertices whose ball changed since the previous
-// pass (RefineContext::changed); returns the number of moves kept.
+// pass (RefineContext::changed); returns the number of moves kept. The
+// inner vertices of two halves of the mesh first, the halves on two
+// threads when c.options.threads > 1, then the vertices between them
+// (vertex_halves.hpp): the same moves with any number of threads.
 std::size_t smooth_vertices(RefineContext& c);
 
 // After the optimisation passes, for Table II's minimum dihedral angle:

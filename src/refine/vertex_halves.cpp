@@ -1,0 +1,50 @@
+#include "refine/vertex_halves.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace cbr::refine {
+
+VertexHalves split_in_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& moving,
+                             const mesh::VertexBalls& balls) {
+    VertexHalves out;
+    if (moving.empty()) return out;
+    // The longest side of the moving vertices' bounding box.
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m.point(moving.front())[k];
+    for (mesh::VertexId v : moving)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], m.point(v)[k]);
+            hi[k] = std::max(hi[k], m.point(v)[k]);
+        }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    // The median: the first half holds the lower half of the coordinates
+    // (ties broken by id, so the split is the same on every run).
+    std::vector<mesh::VertexId> by_coordinate = moving;
+    const auto below = [&](mesh::VertexId a, mesh::VertexId b) {
+        const double x = m.point(a)[axis], y = m.point(b)[axis];
+        return x < y || (x == y && a < b);
+    };
+    const auto middle = by_coordinate.begin() + static_cast<std::ptrdiff_t>(by_coordinate.size() / 2);
+    std::nth_element(by_coordinate.begin(), middle, by_coordinate.end(), below);
+    constexpr std::uint8_t kNone = 2;  // a vertex that does not move in the sweep
+    std::vector<std::uint8_t> half(m.vertex_count(), kNone);
+    for (auto it = by_coordinate.begin(); it != by_coordinate.end(); ++it)
+        half[*it] = it < middle ? 0 : 1;
+    std::vector<mesh::TetId> ball;
+    for (mesh::VertexId v : moving) {
+        balls.get(v, ball);
+        bool inner = true;
+        for (mesh::TetId t : ball)
+            for (int i = 0; i < 4 && inner; ++i) {
+                const mesh::VertexId u = m.vertex(t, i);
+                inner = u == mesh::kGhostVertex || half[u] == kNone || half[u] == half[v];
+            }
+        (inner ? out.inner[half[v]] : out.border).push_back(v);
+    }
+    return out;
+}
+
+}  // namespace cbr::refine

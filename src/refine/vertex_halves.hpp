@@ -1,0 +1,35 @@
+// Two halves of the vertices a smoothing sweep may move, so that two
+// threads (CBR_PARAM_THREADS) can move them at once and the mesh is the
+// same whatever the number of threads.
+//
+// The vertices are split at the median of their coordinate along the
+// longest side of their bounding box. An inner vertex of a half has no
+// vertex of the other half in its link: two inner vertices of different
+// halves are not joined by an edge, so they share no tetrahedron, and
+// neither reads the position the other one writes (a move rates the
+// ball of the vertex: its tetrahedra and the positions of its link). The
+// inner vertices of the two halves may thus be moved at the same time,
+// each half in increasing id order, then the border vertices (the rest)
+// in increasing id order. That order does not depend on the number of
+// threads; with one thread the halves simply run one after the other.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mesh/ball_shell.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace cbr::refine {
+
+struct VertexHalves {
+    std::array<std::vector<mesh::VertexId>, 2> inner;  // increasing ids
+    std::vector<mesh::VertexId> border;                // increasing ids
+};
+
+// Splits `moving` (increasing ids: the vertices a sweep may move; no other
+// vertex moves during it) as above; `balls`: the tetrahedra of each vertex.
+VertexHalves split_in_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& moving,
+                             const mesh::VertexBalls& balls);
+
+}  // namespace cbr::refine
