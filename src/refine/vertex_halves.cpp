@@ -35,14 +35,16 @@ VertexHalves split_in_halves(const mesh::TetMesh& m, const std::vector<mesh::Ver
         half[*it] = it < middle ? 0 : 1;
     std::vector<mesh::TetId> ball;
     for (mesh::VertexId v : moving) {
-        balls.get(v, ball);
-        bool inner = true;
-        for (mesh::TetId t : ball)
-            for (int i = 0; i < 4 && inner; ++i) {
+        // Inner: no corner of v's tetrahedra moves in the other half.
+        const auto in_own_half = [&](mesh::TetId t) {
+            for (int i = 0; i < 4; ++i) {
                 const mesh::VertexId u = m.vertex(t, i);
-                inner = u == mesh::kGhostVertex || half[u] == kNone || half[u] == half[v];
+                if (u != mesh::kGhostVertex && half[u] != kNone && half[u] != half[v]) return false;
             }
-        (inner ? out.inner[half[v]] : out.border).push_back(v);
+            return true;
+        };
+        balls.get(v, ball);
+        (std::all_of(ball.begin(), ball.end(), in_own_half) ? out.inner[half[v]] : out.border).push_back(v);
     }
     return out;
 }
