@@ -2130,8 +2130,17 @@ TEST_CASE("refine: no bad element touches a Steiner point (suppression retried, 
     // points left numbered right after the input points). The cones from
     // a vertex (vertex_cones.hpp), last, would take the cylinder's bad
     // tetrahedra and some of the others too: the run without leaves them
-    // out.
-    for (const std::string name : {"thingicsg-cylinder", "thingiverse-mouth", "thingiverse-feeder-guide-arm"}) {
+    // out. The mouth's points: since the smoothing sweeps move two halves
+    // of the mesh in turn (vertex_halves.hpp, session 57), the smoothing
+    // alone leaves none of their tetrahedra bad; the mouth stays for the
+    // run with every step.
+    struct Case {
+        const char* name;
+        bool bad_without_the_steps;
+    };
+    for (const Case& k : {Case{"thingicsg-cylinder", true}, Case{"thingiverse-mouth", false},
+                          Case{"thingiverse-feeder-guide-arm", true}}) {
+        const std::string name = k.name;
         CAPTURE(name);
         cbr::test::OffSurface off;
         if (!shared_surface(name, off)) return;
@@ -2141,7 +2150,7 @@ TEST_CASE("refine: no bad element touches a Steiner point (suppression retried, 
         without.steiner_relocation = false;
         without.vertex_cones = false;
         const Outcome before = refine_and_check(s, without, 0.0, false, /*steiner_clean=*/false);
-        CHECK(before.quality.bad_touching_steiner > 0);
+        if (k.bad_without_the_steps) CHECK(before.quality.bad_touching_steiner > 0);
         CHECK(before.steiner_left == before.steiner);
         const Outcome after = refine_and_check(s, cbr::refine::RefineOptions{}, 0.0, false, /*steiner_clean=*/true);
         CHECK(after.quality.bad_touching_steiner == 0);
