@@ -18,28 +18,8 @@ using cbr::capi::require;
 
 namespace cbr::capi {
 
-bool refine_stat(const cbr_mesh& mesh, int key, double& value) {
-    const RefineState& r = mesh.refine;
-    const auto count = [](std::size_t n) { return static_cast<double>(n); };
-    switch (key) {
-        case CBR_STAT_QUALITY_AVERAGE: value = r.quality.average; return true;
-        case CBR_STAT_QUALITY_MIN: value = r.quality.minimum; return true;
-        case CBR_STAT_PERCENT_ABOVE_0_4: value = r.quality.percent_above_0_4; return true;
-        case CBR_STAT_PERCENT_BELOW_0_1: value = r.quality.percent_below_0_1; return true;
-        case CBR_STAT_BAD_TOUCHING_STEINER: value = count(r.quality.bad_touching_steiner); return true;
-        case CBR_STAT_DIHEDRAL_MIN: value = r.quality.dihedral_min_deg; return true;
-        case CBR_STAT_DIHEDRAL_MAX: value = r.quality.dihedral_max_deg; return true;
-        case CBR_STAT_FIELD_POINTS: value = count(r.stats.field_points); return true;
-        case CBR_STAT_REFINE_FLIPS: value = count(r.stats.flips); return true;
-        case CBR_STAT_REFINE_SECONDS: value = r.seconds; return true;
-        case CBR_STAT_REFINE_TETS: value = count(r.quality.tets); return true;
-        case CBR_STAT_REFINE_OVERSIZE_TETS: value = count(r.stats.unresolved_size); return true;
-        default: return false;
-    }
-}
-
-// The Table II keys of cbr_mesh_get_region_stat, from one region's table.
-bool region_stat(const cbr::refine::QualityTable& q, int key, double& value) {
+// The Table II keys, from a table (the whole mesh's or one region's).
+bool table_two_stat(const cbr::refine::QualityTable& q, int key, double& value) {
     switch (key) {
         case CBR_STAT_QUALITY_AVERAGE: value = q.average; return true;
         case CBR_STAT_QUALITY_MIN: value = q.minimum; return true;
@@ -49,6 +29,19 @@ bool region_stat(const cbr::refine::QualityTable& q, int key, double& value) {
         case CBR_STAT_DIHEDRAL_MIN: value = q.dihedral_min_deg; return true;
         case CBR_STAT_DIHEDRAL_MAX: value = q.dihedral_max_deg; return true;
         case CBR_STAT_REFINE_TETS: value = static_cast<double>(q.tets); return true;
+        default: return false;
+    }
+}
+
+bool refine_stat(const cbr_mesh& mesh, int key, double& value) {
+    const RefineState& r = mesh.refine;
+    if (table_two_stat(r.quality, key, value)) return true;
+    const auto count = [](std::size_t n) { return static_cast<double>(n); };
+    switch (key) {
+        case CBR_STAT_FIELD_POINTS: value = count(r.stats.field_points); return true;
+        case CBR_STAT_REFINE_FLIPS: value = count(r.stats.flips); return true;
+        case CBR_STAT_REFINE_SECONDS: value = r.seconds; return true;
+        case CBR_STAT_REFINE_OVERSIZE_TETS: value = count(r.stats.unresolved_size); return true;
         default: return false;
     }
 }
@@ -116,7 +109,7 @@ CBR_API int cbr_mesh_get_region_stat(const cbr_mesh* mesh, int32_t region, int k
         const std::vector<cbr::refine::QualityTable>& tables = mesh->refine.region_quality;
         const auto r = static_cast<std::size_t>(region);
         const cbr::refine::QualityTable table = r < tables.size() ? tables[r] : cbr::refine::QualityTable{};
-        if (!cbr::capi::region_stat(table, key, *value))
+        if (!cbr::capi::table_two_stat(table, key, *value))
             throw ApiError{CBR_ERR_INVALID_ARGUMENT,
                            "statistic key " + std::to_string(key) +
                                " has no value per region (CBR_STAT_QUALITY_AVERAGE to CBR_STAT_DIHEDRAL_MAX, "
