@@ -53,6 +53,7 @@
 #include "refine/quality_stats.hpp"
 #include "refine/refine.hpp"
 #include "refine/refine_context.hpp"
+#include "refine/sizing_field.hpp"
 #include "refine/sliver_removal.hpp"
 #include "refine/smoothing.hpp"
 #include "refine/steiner_removal.hpp"
@@ -333,6 +334,68 @@ cbr::refine::RefineOptions constant_size(double h) {
 }
 
 }  // namespace
+
+TEST_CASE("SizingField: the surface's sizes graded over every edge of the mesh") {
+    // Delaunay of random points; 40 disjoint triangles make 120 of them
+    // surface vertices (the field only reads their edges' lengths).
+    const std::vector<double> xyz = cbr::test::random_points(400, 11);
+    cbr::delaunay::Delaunay d;
+    REQUIRE(d.insert_points(xyz.data(), 400).ok);
+    const cbr::mesh::TetMesh& m = d.mesh();
+    std::vector<cbr::recover::Triangle> tris(40);
+    for (std::size_t i = 0; i < tris.size(); ++i)
+        for (int k = 0; k < 3; ++k) tris[i][k] = d.internal_id(static_cast<VertexId>(3 * i + k));
+    const cbr::recover::ConstraintFaces faces(tris, {});
+    const cbr::refine::RefineOptions options;
+    const cbr::refine::SizingField field(m, faces, options);
+
+    // The same field by relaxing every edge of every tetrahedron until
+    // nothing changes (Bellman-Ford), with SizingField's rules: a surface
+    // vertex starts at the mean length of its input edges and is lowered
+    // only from another surface vertex.
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::size_t n = m.vertex_count();
+    std::vector<double> h(n, inf);
+    std::vector<char> on_surface(n, 0);
+    {
+        std::map<VertexId, std::set<VertexId>> ends;
+        for (const auto& t : tris)
+            for (int k = 0; k < 3; ++k) {
+                ends[t[k]].insert(t[(k + 1) % 3]);
+                ends[t[(k + 1) % 3]].insert(t[k]);
+            }
+        for (const auto& [v, others] : ends) {
+            double sum = 0;
+            for (VertexId u : others) sum += std::sqrt(cbr::refine::squared_distance(m.point(v), m.point(u)));
+            h[v] = sum / static_cast<double>(others.size());
+            on_surface[v] = 1;
+        }
+    }
+    const std::vector<double> start = h;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (TetId t = 0; t < m.slot_count(); ++t) {
+            if (m.is_free(t) || m.is_ghost(t)) continue;
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j) {
+                    const VertexId v = m.vertex(t, i), u = m.vertex(t, j);
+                    if (i == j || (on_surface[u] && !on_surface[v])) continue;
+                    const double cand =
+                        h[v] + options.grading * std::sqrt(cbr::refine::squared_distance(m.point(v), m.point(u)));
+                    if (cand < h[u]) h[u] = cand, changed = true;
+                }
+        }
+    }
+    std::size_t lowered = 0, interior = 0, mismatches = 0;
+    for (VertexId v = 0; v < n; ++v) {
+        lowered += on_surface[v] && h[v] < start[v];
+        interior += !on_surface[v] && std::isfinite(h[v]);
+        if (!(std::fabs(field.at(v) - h[v]) <= 1e-12 * h[v])) ++mismatches;
+    }
+    CHECK(lowered > 10);  // the grading lowered surface vertices from their neighbours
+    CHECK(interior == n - 120);
+    CHECK(mismatches == 0);
+}
 
 TEST_CASE("refine: a constant size, and the smaller of it and the surface field") {
     // The nine-sphere box: surface edges about 0.17 (box) and 0.1 (spheres).
