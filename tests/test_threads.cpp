@@ -176,7 +176,7 @@ TEST_CASE("threads: the smoothing halves: no edge joins inner vertices of both, 
     std::vector<VertexId> moving;  // every other vertex: the others stay, as surface vertices do
     for (VertexId v = 0; v < m.vertex_count(); v += 2)
         if (!balls.empty(v)) moving.push_back(v);
-    const cbr::refine::VertexHalves halves = cbr::refine::split_in_halves(m, moving, balls);
+    const cbr::refine::VertexHalves halves = cbr::refine::split_in_halves(m, moving);
     // Each list in increasing id order; together, `moving` once each.
     std::vector<VertexId> all;
     for (const std::vector<VertexId>* list : {&halves.inner[0], &halves.inner[1], &halves.border}) {
@@ -209,7 +209,7 @@ TEST_CASE("threads: the smoothing halves: no edge joins inner vertices of both, 
     CHECK(halves.border.size() > 0);
     CHECK(halves.border.size() < moving.size() / 5);
     // Nothing to split.
-    const cbr::refine::VertexHalves none = cbr::refine::split_in_halves(m, {}, balls);
+    const cbr::refine::VertexHalves none = cbr::refine::split_in_halves(m, {});
     CHECK(none.inner[0].empty());
     CHECK(none.inner[1].empty());
     CHECK(none.border.empty());

@@ -443,7 +443,7 @@ std::size_t smooth_vertices(RefineContext& c) {
         if (c.is_movable(v) && !c.is_surface_vertex(v) && !balls.empty(v)) moving.push_back(v);
     // The two halves' inner vertices at once (one Smoother, with its
     // scratch storage, each), then the border (vertex_halves.hpp).
-    const VertexHalves halves = split_in_halves(c.m, moving, balls);
+    const VertexHalves halves = split_in_halves(c.m, moving);
     c.reserve_stamps();
     std::array<std::size_t, 2> moved = {0, 0};
     mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {

@@ -17,7 +17,6 @@
 #include <array>
 #include <vector>
 
-#include "mesh/ball_shell.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::refine {
@@ -28,8 +27,7 @@ struct VertexHalves {
 };
 
 // Splits `moving` (increasing ids: the vertices a sweep may move; no other
-// vertex moves during it) as above; `balls`: the tetrahedra of each vertex.
-VertexHalves split_in_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& moving,
-                             const mesh::VertexBalls& balls);
+// vertex moves during it) as above.
+VertexHalves split_in_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& moving);
 
 }  // namespace cbr::refine
