@@ -1109,6 +1109,39 @@ TEST_CASE("refine: a point moved for the smallest dihedral angle keeps its ball'
     }
 }
 
+TEST_CASE("refine: moves for the smallest angle: the same with two threads as with one") {
+    // smooth_for_dihedrals moves the inner vertices of two halves at once
+    // when the context has threads (refine/vertex_halves.hpp): the same
+    // moves, logged in the same order, and the same points as with one.
+    // The 48-gon coin refined without these moves, twice.
+    cbr::refine::RefineOptions without;
+    without.dihedral_smoothing = false;
+    RefinedAlone one, two;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, one);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, two);
+    cbr::mesh::TetMesh& m = two.r.d.mesh_for_update();
+    std::vector<VertexId> added;
+    for (VertexId v = 0; v < m.vertex_count(); ++v)
+        if (two.c->is_movable(v)) added.push_back(v);
+    cbr::refine::RefineOptions threads;
+    threads.threads = 2;
+    two.c = std::make_unique<cbr::refine::RefineContext>(m, *two.faces,
+                                                         cbr::recover::classify_regions(m, *two.faces).of_tet,
+                                                         added, threads);
+    std::vector<cbr::refine::VertexMove> by_one, by_two;
+    const std::size_t moved = cbr::refine::smooth_for_dihedrals(*one.c, 5.0, 0.1, &by_one);
+    CHECK(cbr::refine::smooth_for_dihedrals(*two.c, 5.0, 0.1, &by_two) == moved);
+    MESSAGE("moves: " << moved);
+    CHECK(moved >= 10);
+    REQUIRE(by_one.size() == by_two.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < by_one.size(); ++i)
+        differ += by_one[i].v != by_two[i].v || by_one[i].from != by_two[i].from || by_one[i].to != by_two[i].to;
+    CHECK(differ == 0);
+    CHECK(one.r.d.mesh().coordinates() == m.coordinates());
+    REQUIRE(cbr::mesh::check_mesh(m).ok());
+}
+
 TEST_CASE("refine: later rounds of moves for the smallest angle try only the balls that changed, and move the same") {
     // smooth_for_dihedrals with `since`: a ball with no tetrahedron created
     // or reshaped in that pass or after it is skipped, since it failed in

@@ -423,17 +423,35 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
         if (c.in_domain(t) && has_dihedral_below(c.m, t, below_degrees, q_bound))
             for (int i = 0; i < 4; ++i) near_small_angle[c.m.vertex(t, i)] = 1;
     const std::vector<TetId> incident = mesh::incident_tets(c.m);
-    Smoother s(c);
-    std::size_t moved = 0;
-    for (VertexId v = 0; v < c.m.vertex_count(); ++v) {
-        if (!near_small_angle[v] || !c.is_movable(v) || c.is_surface_vertex(v) || incident[v] == mesh::kNoTet)
-            continue;
+    std::vector<VertexId> moving;
+    for (VertexId v = 0; v < c.m.vertex_count(); ++v)
+        if (near_small_angle[v] && c.is_movable(v) && !c.is_surface_vertex(v) && incident[v] != mesh::kNoTet)
+            moving.push_back(v);
+    // A move reads v's ball and link and writes v and its ball's stamps,
+    // as smooth() does: the two halves' inner vertices at once, then the
+    // border (vertex_halves.hpp). The log lists the moves in that order,
+    // in which they can be replayed one by one.
+    const VertexHalves halves = split_in_halves(c.m, moving);
+    c.reserve_stamps();
+    const auto move = [&](Smoother& s, VertexId v, std::vector<VertexMove>* moves) {
         const Point from = {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]};
-        if (!s.raise_smallest_angle(v, incident[v], below_degrees, keep_radius_ratio, since)) continue;
-        ++moved;
-        if (log) log->push_back({v, from, {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]}});
-    }
-    return moved;
+        if (!s.raise_smallest_angle(v, incident[v], below_degrees, keep_radius_ratio, since)) return false;
+        if (moves) moves->push_back({v, from, {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]}});
+        return true;
+    };
+    std::array<std::size_t, 2> moved = {0, 0};
+    std::array<std::vector<VertexMove>, 2> inner_log;
+    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Smoother s(c);
+        for (std::size_t h = begin; h < end; ++h)
+            for (VertexId v : halves.inner[h]) moved[h] += move(s, v, log ? &inner_log[h] : nullptr);
+    });
+    if (log)
+        for (const std::vector<VertexMove>& half : inner_log) log->insert(log->end(), half.begin(), half.end());
+    Smoother s(c);
+    std::size_t border_moved = 0;
+    for (VertexId v : halves.border) border_moved += move(s, v, log);
+    return moved[0] + moved[1] + border_moved;
 }
 
 std::size_t smooth_vertices(RefineContext& c) {
