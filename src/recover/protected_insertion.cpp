@@ -524,6 +524,8 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
 
 void ProtectedInserter::set_full_rounds(bool full) { scratch_->full_rounds = full; }
 
+mesh::SlotMarks& ProtectedInserter::shared_marks() { return scratch_->tet_marks; }
+
 const ProtectedInsertResult& ProtectedInserter::last() const { return scratch_->result; }
 
 bool ProtectedInserter::undo_last(TetMesh& m, VertexId p, std::vector<TetId>& restored) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/slot_marks.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::recover {
@@ -95,6 +96,15 @@ public:
     // faces that can act, and the check only after a removal). The outcome
     // is the same, which the test that sets this proves.
     void set_full_rounds(bool full);
+
+    // The per-slot marks each insertion starts a new round of, for a
+    // caller to use between insertions (after SlotMarks::new_round): a
+    // search that marks the tetrahedra of a point's cavity just before the
+    // point is inserted (refine/field_points.cpp's probe) leaves their
+    // words in cache for the insertion, where a mark array of its own
+    // was a second cache miss per tetrahedron (on common3d-igea a fifth
+    // of the insertions' time was reading marks).
+    mesh::SlotMarks& shared_marks();
 
     struct Scratch;  // protected_insertion.cpp
 

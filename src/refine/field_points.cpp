@@ -95,11 +95,12 @@ private:
     std::deque<Entry> queue_;
     recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
     // probe()'s scratch: its cavity, and per slot whether a tetrahedron
-    // was tested (kTested) and is in the cavity (kInCavity).
+    // was tested (kTested) and is in the cavity (kInCavity), in the
+    // inserter's shared marks (the insertion that follows reads the same
+    // words).
     static constexpr std::uint8_t kTested = 1u << 0;
     static constexpr std::uint8_t kInCavity = 1u << 1;
     std::vector<TetId> probe_cavity_;
-    mesh::SlotMarks probe_marks_;
 };
 
 // Also "met" when the circumradius is already below kMinQualityRadius times
@@ -133,7 +134,7 @@ bool Refiner::meets_quality(TetId t) const {
 Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star, const Refusal& refusal) {
     Probe out;
     std::vector<TetId>& cavity = probe_cavity_;
-    mesh::SlotMarks& marks = probe_marks_;
+    mesh::SlotMarks& marks = inserter_.shared_marks();
     marks.new_round(m_.slot_count());
     cavity.assign(1, start);
     marks.set(start, kTested | kInCavity);
