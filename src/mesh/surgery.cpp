@@ -372,7 +372,8 @@ constexpr std::uint8_t kInOld = 1;  // ConeReplacer's mark: listed in `old`
 
 struct ConeReplacer::Scratch {
     Plan plan;
-    SlotMarks in_old;            // per slot: kInOld
+    SlotMarks own_marks;
+    SlotMarks* in_old = &own_marks;  // per slot: kInOld (ConeReplacer::share_marks)
     std::vector<EdgeSlot> edges;  // see EdgeSlot; a power of two long
     std::vector<TetId> slots;
     // What restore_last() puts back, from the last successful replace():
@@ -630,6 +631,8 @@ ReplaceResult replace_tets(TetMesh& m, const std::vector<TetId>& old, const std:
 ConeReplacer::ConeReplacer() : scratch_(std::make_unique<Scratch>()) {}
 ConeReplacer::~ConeReplacer() = default;
 
+void ConeReplacer::share_marks(SlotMarks* marks) { scratch_->in_old = marks ? marks : &scratch_->own_marks; }
+
 // The checks of replace_tets in its order. Its matching of sorted face
 // triples reduces here to the faces through p (link_faces_through_apex):
 // in a valid mesh a triangle bounds two tetrahedra, so the boundary faces
@@ -641,13 +644,14 @@ ReplaceResult ConeReplacer::replace(TetMesh& m, const std::vector<TetId>& old, V
     Scratch& s = *scratch_;
     s.old_vertices.clear();  // nothing to restore unless this one is done
     if (old.empty() || p >= m.vertex_count()) return ReplaceResult::kBadInput;
-    s.in_old.new_round(m.slot_count());
+    SlotMarks& in_old = *s.in_old;
+    in_old.new_round(m.slot_count());
     for (TetId t : old) {
-        if (t >= m.slot_count() || m.is_free(t) || s.in_old.has(t, kInOld)) return ReplaceResult::kBadInput;
-        s.in_old.set(t, kInOld);
+        if (t >= m.slot_count() || m.is_free(t) || in_old.has(t, kInOld)) return ReplaceResult::kBadInput;
+        in_old.set(t, kInOld);
     }
     bool interior_constraint = false;
-    if (!build_cones(m, old, p, s.in_old, s.plan, s.cone_base, interior_constraint)) return ReplaceResult::kBadInput;
+    if (!build_cones(m, old, p, in_old, s.plan, s.cone_base, interior_constraint)) return ReplaceResult::kBadInput;
     const ReplaceResult tiling = link_faces_through_apex(s.plan, p, s.edges);
     if (tiling != ReplaceResult::kDone) return tiling;
     if (interior_constraint) return ReplaceResult::kRemovesConstraint;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/ball_shell.hpp"
+#include "mesh/slot_marks.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace cbr::mesh {
@@ -95,6 +96,13 @@ public:
     // is returned, the mesh unchanged, when they are not, or when there is
     // nothing to undo (once undone, or after a replace() that failed).
     bool restore_last(TetMesh& m, const std::vector<TetId>& created, std::vector<TetId>* restored = nullptr);
+
+    // replace() marks the old tetrahedra in `marks` (a new round each
+    // call) instead of in marks of its own; nullptr: its own again. For
+    // an owner that has just marked the same tetrahedra in `marks` (a
+    // point insertion's cavity, recover/protected_insertion.cpp): their
+    // words are then in cache.
+    void share_marks(SlotMarks* marks);
 
     struct Scratch;  // surgery.cpp
 

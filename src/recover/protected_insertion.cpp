@@ -481,7 +481,10 @@ bool Cavity::correct(std::string& why) {
 
 }  // namespace
 
-ProtectedInserter::ProtectedInserter() : scratch_(std::make_unique<Scratch>()) {}
+ProtectedInserter::ProtectedInserter() : scratch_(std::make_unique<Scratch>()) {
+    // The star is built right after the cavity is marked, on the same slots.
+    scratch_->star.share_marks(&scratch_->tet_marks);
+}
 ProtectedInserter::~ProtectedInserter() = default;
 
 const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetId start, const BlockedFace& blocked,
