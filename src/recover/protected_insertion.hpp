@@ -102,8 +102,8 @@ public:
     // search that marks the tetrahedra of a point's cavity just before the
     // point is inserted (refine/field_points.cpp's probe) leaves their
     // words in cache for the insertion, where a mark array of its own
-    // was a second cache miss per tetrahedron (on common3d-igea a fifth
-    // of the insertions' time was reading marks).
+    // was a second cache miss per tetrahedron (on common3d-igea a third
+    // of the insertions' samples were in reading and writing marks).
     mesh::SlotMarks& shared_marks();
 
     struct Scratch;  // protected_insertion.cpp

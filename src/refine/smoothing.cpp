@@ -410,6 +410,29 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     return moved;
 }
 
+// Calls move(smoother, v, list) for each vertex of `moving` (increasing
+// ids; a move reads v's ball and link and writes v and its ball's stamps):
+// the inner vertices of the two halves at once, list 0 and 1, each half on
+// its own thread with its own Smoother (scratch storage) when the context
+// allows two; then the border vertices, list 2 (vertex_halves.hpp). The
+// order does not depend on the number of threads. Returns how many moves
+// returned true.
+template <typename Move>
+std::size_t move_in_halves(RefineContext& c, const std::vector<VertexId>& moving, Move move) {
+    const VertexHalves halves = split_in_halves(c.m, moving);
+    c.reserve_stamps();
+    std::array<std::size_t, 2> moved = {0, 0};
+    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Smoother s(c);
+        for (std::size_t h = begin; h < end; ++h)
+            for (VertexId v : halves.inner[h]) moved[h] += move(s, v, h);
+    });
+    Smoother s(c);
+    std::size_t border_moved = 0;
+    for (VertexId v : halves.border) border_moved += move(s, v, std::size_t{2});
+    return moved[0] + moved[1] + border_moved;
+}
+
 }  // namespace
 
 std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double keep_radius_ratio,
@@ -427,31 +450,18 @@ std::size_t smooth_for_dihedrals(RefineContext& c, double below_degrees, double 
     for (VertexId v = 0; v < c.m.vertex_count(); ++v)
         if (near_small_angle[v] && c.is_movable(v) && !c.is_surface_vertex(v) && incident[v] != mesh::kNoTet)
             moving.push_back(v);
-    // A move reads v's ball and link and writes v and its ball's stamps,
-    // as smooth() does: the two halves' inner vertices at once, then the
-    // border (vertex_halves.hpp). The log lists the moves in that order,
-    // in which they can be replayed one by one.
-    const VertexHalves halves = split_in_halves(c.m, moving);
-    c.reserve_stamps();
-    const auto move = [&](Smoother& s, VertexId v, std::vector<VertexMove>* moves) {
+    // The two halves at once, then the border (move_in_halves); the log
+    // lists the moves in that order, in which they can be replayed.
+    std::array<std::vector<VertexMove>, 3> logs;
+    const std::size_t moved = move_in_halves(c, moving, [&](Smoother& s, VertexId v, std::size_t list) {
         const Point from = {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]};
         if (!s.raise_smallest_angle(v, incident[v], below_degrees, keep_radius_ratio, since)) return false;
-        if (moves) moves->push_back({v, from, {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]}});
+        if (log) logs[list].push_back({v, from, {c.m.point(v)[0], c.m.point(v)[1], c.m.point(v)[2]}});
         return true;
-    };
-    std::array<std::size_t, 2> moved = {0, 0};
-    std::array<std::vector<VertexMove>, 2> inner_log;
-    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
-        Smoother s(c);
-        for (std::size_t h = begin; h < end; ++h)
-            for (VertexId v : halves.inner[h]) moved[h] += move(s, v, log ? &inner_log[h] : nullptr);
     });
     if (log)
-        for (const std::vector<VertexMove>& half : inner_log) log->insert(log->end(), half.begin(), half.end());
-    Smoother s(c);
-    std::size_t border_moved = 0;
-    for (VertexId v : halves.border) border_moved += move(s, v, log);
-    return moved[0] + moved[1] + border_moved;
+        for (const std::vector<VertexMove>& list : logs) log->insert(log->end(), list.begin(), list.end());
+    return moved;
 }
 
 std::size_t smooth_vertices(RefineContext& c) {
@@ -459,20 +469,7 @@ std::size_t smooth_vertices(RefineContext& c) {
     std::vector<VertexId> moving;
     for (VertexId v = 0; v < c.m.vertex_count(); ++v)
         if (c.is_movable(v) && !c.is_surface_vertex(v) && !balls.empty(v)) moving.push_back(v);
-    // The two halves' inner vertices at once (one Smoother, with its
-    // scratch storage, each), then the border (vertex_halves.hpp).
-    const VertexHalves halves = split_in_halves(c.m, moving);
-    c.reserve_stamps();
-    std::array<std::size_t, 2> moved = {0, 0};
-    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
-        Smoother s(c);
-        for (std::size_t h = begin; h < end; ++h)
-            for (VertexId v : halves.inner[h]) moved[h] += s.smooth(v, balls);
-    });
-    Smoother s(c);
-    std::size_t border_moved = 0;
-    for (VertexId v : halves.border) border_moved += s.smooth(v, balls);
-    return moved[0] + moved[1] + border_moved;
+    return move_in_halves(c, moving, [&](Smoother& s, VertexId v, std::size_t) { return s.smooth(v, balls); });
 }
 
 }  // namespace cbr::refine
