@@ -500,6 +500,23 @@ void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& opt
                                                          added, cbr::refine::RefineOptions{});
 }
 
+// Two identical refinements of the 48-gon coin 60 across and 1 thick
+// without the moves for the smallest angle, for the tests of those moves.
+void coin_without_angle_moves(RefinedAlone& a, RefinedAlone& b) {
+    cbr::refine::RefineOptions without;
+    without.dihedral_smoothing = false;
+    refine_then_context(fan_cap_prism(48, 30, 1), without, a);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, b);
+}
+
+// Whether two logs of smooth_for_dihedrals list the same moves in order.
+bool same_moves(const std::vector<cbr::refine::VertexMove>& a, const std::vector<cbr::refine::VertexMove>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].v != b[i].v || a[i].from != b[i].from || a[i].to != b[i].to) return false;
+    return true;
+}
+
 using cbr::refine::Corners;
 using Measure = double (*)(const double*, const double*, const double*, const double*);
 // The smallest `measure` over tetrahedra given by their corners.
@@ -1114,11 +1131,8 @@ TEST_CASE("refine: moves for the smallest angle: the same with two threads as wi
     // when the context has threads (refine/vertex_halves.hpp): the same
     // moves, logged in the same order, and the same points as with one.
     // The 48-gon coin refined without these moves, twice.
-    cbr::refine::RefineOptions without;
-    without.dihedral_smoothing = false;
     RefinedAlone one, two;
-    refine_then_context(fan_cap_prism(48, 30, 1), without, one);
-    refine_then_context(fan_cap_prism(48, 30, 1), without, two);
+    coin_without_angle_moves(one, two);
     cbr::mesh::TetMesh& m = two.r.d.mesh_for_update();
     std::vector<VertexId> added;
     for (VertexId v = 0; v < m.vertex_count(); ++v)
@@ -1133,11 +1147,7 @@ TEST_CASE("refine: moves for the smallest angle: the same with two threads as wi
     CHECK(cbr::refine::smooth_for_dihedrals(*two.c, 5.0, 0.1, &by_two) == moved);
     MESSAGE("moves: " << moved);
     CHECK(moved >= 10);
-    REQUIRE(by_one.size() == by_two.size());
-    std::size_t differ = 0;
-    for (std::size_t i = 0; i < by_one.size(); ++i)
-        differ += by_one[i].v != by_two[i].v || by_one[i].from != by_two[i].from || by_one[i].to != by_two[i].to;
-    CHECK(differ == 0);
+    CHECK(same_moves(by_one, by_two));
     CHECK(one.r.d.mesh().coordinates() == m.coordinates());
     REQUIRE(cbr::mesh::check_mesh(m).ok());
 }
@@ -1151,18 +1161,8 @@ TEST_CASE("refine: later rounds of moves for the smallest angle try only the bal
     // unfiltered in the other, makes the same moves; and a third round
     // filtered by a pass in which nothing changed moves nothing, while
     // the unfiltered one still finds moves (the filter has work to skip).
-    cbr::refine::RefineOptions without;
-    without.dihedral_smoothing = false;
     RefinedAlone filtered, all;
-    refine_then_context(fan_cap_prism(48, 30, 1), without, filtered);
-    refine_then_context(fan_cap_prism(48, 30, 1), without, all);
-    const auto same_moves = [](const std::vector<cbr::refine::VertexMove>& a,
-                               const std::vector<cbr::refine::VertexMove>& b) {
-        if (a.size() != b.size()) return false;
-        for (std::size_t i = 0; i < a.size(); ++i)
-            if (a[i].v != b[i].v || a[i].to != b[i].to) return false;
-        return true;
-    };
+    coin_without_angle_moves(filtered, all);
     std::vector<cbr::refine::VertexMove> f1, a1, f2, a2, f3, a3;
     filtered.c->start_pass();
     all.c->start_pass();
