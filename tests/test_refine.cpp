@@ -488,7 +488,10 @@ struct RefinedAlone {
     std::unique_ptr<cbr::recover::ConstraintFaces> faces;
     std::unique_ptr<cbr::refine::RefineContext> c;
 };
-void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& options, RefinedAlone& out) {
+// `context`: the options of the context made after the refinement (its
+// threads, for the tests of the passes that use them).
+void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& options, RefinedAlone& out,
+                         const cbr::refine::RefineOptions& context = {}) {
     recover_surface(s, out.r);
     cbr::mesh::TetMesh& m = out.r.d.mesh_for_update();
     out.faces = std::make_unique<cbr::recover::ConstraintFaces>(out.r.tris, std::vector<std::int32_t>{});
@@ -497,16 +500,17 @@ void refine_then_context(const Surface& s, const cbr::refine::RefineOptions& opt
     for (VertexId v = static_cast<VertexId>(s.xyz.size() / 3); v < m.vertex_count(); ++v) added.push_back(v);
     out.c = std::make_unique<cbr::refine::RefineContext>(m, *out.faces,
                                                          cbr::recover::classify_regions(m, *out.faces).of_tet,
-                                                         added, cbr::refine::RefineOptions{});
+                                                         added, context);
 }
 
 // Two identical refinements of the 48-gon coin 60 across and 1 thick
-// without the moves for the smallest angle, for the tests of those moves.
-void coin_without_angle_moves(RefinedAlone& a, RefinedAlone& b) {
+// without the moves for the smallest angle, for the tests of those moves;
+// `b_context`: the options of b's context.
+void coin_without_angle_moves(RefinedAlone& a, RefinedAlone& b, const cbr::refine::RefineOptions& b_context = {}) {
     cbr::refine::RefineOptions without;
     without.dihedral_smoothing = false;
     refine_then_context(fan_cap_prism(48, 30, 1), without, a);
-    refine_then_context(fan_cap_prism(48, 30, 1), without, b);
+    refine_then_context(fan_cap_prism(48, 30, 1), without, b, b_context);
 }
 
 // Whether two logs of smooth_for_dihedrals list the same moves in order.
@@ -1131,17 +1135,11 @@ TEST_CASE("refine: moves for the smallest angle: the same with two threads as wi
     // when the context has threads (refine/vertex_halves.hpp): the same
     // moves, logged in the same order, and the same points as with one.
     // The 48-gon coin refined without these moves, twice.
-    RefinedAlone one, two;
-    coin_without_angle_moves(one, two);
-    cbr::mesh::TetMesh& m = two.r.d.mesh_for_update();
-    std::vector<VertexId> added;
-    for (VertexId v = 0; v < m.vertex_count(); ++v)
-        if (two.c->is_movable(v)) added.push_back(v);
     cbr::refine::RefineOptions threads;
     threads.threads = 2;
-    two.c = std::make_unique<cbr::refine::RefineContext>(m, *two.faces,
-                                                         cbr::recover::classify_regions(m, *two.faces).of_tet,
-                                                         added, threads);
+    RefinedAlone one, two;
+    coin_without_angle_moves(one, two, threads);
+    const cbr::mesh::TetMesh& m = two.r.d.mesh();
     std::vector<cbr::refine::VertexMove> by_one, by_two;
     const std::size_t moved = cbr::refine::smooth_for_dihedrals(*one.c, 5.0, 0.1, &by_one);
     CHECK(cbr::refine::smooth_for_dihedrals(*two.c, 5.0, 0.1, &by_two) == moved);
