@@ -20,6 +20,7 @@
 #include "mesh/ball_shell.hpp"
 #include "mesh/flips.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/slot_pool.hpp"
 #include "mesh/surgery.hpp"
 #include "mesh_test_util.hpp"
 #include "test_util.hpp"
@@ -1485,6 +1486,79 @@ TEST_CASE("the undo journal puts back every slot, flag and the free list") {
     REQUIRE(done > 0);
     CHECK_FALSE((Snapshot(m) == before));
     require_valid(m);
+}
+
+// A thread's slot pool (mesh/slot_pool.hpp): it takes the free list's
+// last slots, then new ones; while in use, replacements on that thread
+// take and give back only its slots, and the mesh's free list and size
+// stay as they are; left over, its slots go back to the free list.
+TEST_CASE("a slot pool takes, hands out and gives back free slots; the mesh's list is untouched meanwhile") {
+    TetMesh m = delaunay_mesh(cbr::test::random_points(200, 73));
+    std::vector<TetId> spare;
+    for (int k = 0; k < 6; ++k) spare.push_back(m.allocate_tet());
+    for (TetId t : spare) m.release_tet(t);  // the free list ends with spare, in order
+    const std::size_t slots = m.slot_count(), listed = m.free_count();
+    REQUIRE(listed < 40);
+    const std::size_t added = 40 - listed;  // new slots the pool appends
+    Rng rng(79);
+    std::vector<TetId> given;
+    {
+        SlotPool pool(m, 40);
+        CHECK(m.free_count() == 0);
+        CHECK(m.slot_count() == slots + added);
+        given = pool.slots();
+        REQUIRE(given.size() == 40);
+        CHECK(std::vector<TetId>(given.begin(), given.begin() + 6) ==
+              std::vector<TetId>(spare.rbegin(), spare.rend()));
+        for (TetId t : given) CHECK(m.is_free(t));
+        std::set<TetId> pool_slots(given.begin(), given.end());
+        std::size_t done = 0, outside = 0;
+        {
+            const SlotPool::Use use(pool);
+            CHECK(SlotPool::in_use(m) == &pool);
+            std::vector<TetId> created;
+            for (int a = 0; a < 300 && pool.size() >= 4; ++a) {
+                const std::vector<TetId> before_live = [&] {
+                    std::vector<TetId> live;
+                    for (TetId t = 0; t < m.slot_count(); ++t)
+                        if (!m.is_free(t)) live.push_back(t);
+                    return live;
+                }();
+                bool hull = false;
+                created.clear();
+                if (random_flip(m, rng, static_cast<Kind>(rng() % kKinds), hull, created) != FlipResult::kDone) continue;
+                ++done;
+                const std::set<TetId> was_live(before_live.begin(), before_live.end());
+                for (TetId t : created) outside += !was_live.count(t) && !pool_slots.count(t);
+                for (TetId t : before_live)
+                    if (m.is_free(t)) pool_slots.insert(t);  // released: the pool's now
+            }
+            CHECK(m.free_count() == 0);
+            CHECK(m.slot_count() == slots + added);
+            require_valid(m);
+        }
+        CHECK(done > 50);
+        CHECK(outside == 0);  // every fresh slot came from the pool (or was released to it)
+        CHECK(SlotPool::in_use(m) == nullptr);
+        // Not in use here: allocation is the mesh's (a new slot).
+        const TetId t = m.allocate_tet();
+        CHECK(t == slots + added);
+        m.release_tet(t);
+        CHECK(m.free_count() == 1);
+        given = pool.slots();
+        // An empty pool refuses; and none is taken while the journal is open.
+        SlotPool empty(m, 0);
+        const SlotPool::Use use(empty);
+        CHECK_THROWS_AS(m.allocate_tet(), std::logic_error);
+        m.open_journal();
+        CHECK_THROWS_AS(SlotPool(m, 1), std::logic_error);
+        m.close_journal();
+    }
+    // The pool's slots left, back on the free list after the mesh's own one.
+    REQUIRE(m.free_count() == 1 + given.size());
+    std::vector<TetId> order = allocation_order(m);
+    order.resize(given.size());
+    CHECK(order == std::vector<TetId>(given.rbegin(), given.rend()));
 }
 
 // set_tet, with which every replacement writes its fresh slots: the whole

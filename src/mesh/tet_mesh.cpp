@@ -1,5 +1,7 @@
 #include "mesh/tet_mesh.hpp"
 
+#include "mesh/slot_pool.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <stdexcept>
@@ -29,6 +31,7 @@ void TetMesh::set_vertices(TetId t, VertexId a, VertexId b, VertexId c, VertexId
 }
 
 TetId TetMesh::allocate_tet() {
+    if (SlotPool* pool = SlotPool::in_use(*this)) return pool->take();
     if (!free_.empty()) {
         const TetId t = free_.back();
         before_change(t);
@@ -50,6 +53,7 @@ TetId TetMesh::allocate_tet() {
 void TetMesh::release_tet(TetId t) {
     before_change(t);
     flags_[t] = kFlagFree;
+    if (SlotPool* pool = SlotPool::in_use(*this)) return pool->give(t);
     free_.push_back(t);
 }
 

@@ -137,7 +137,8 @@ public:
         else flags_[t] &= static_cast<std::uint8_t>(~constraint_bit(f));
     }
 
-    // A tetrahedron slot: a free one if any, else a new one at the end.
+    // A tetrahedron slot: a free one if any, else a new one at the end (on
+    // a thread with a SlotPool for this mesh: the pool's, slot_pool.hpp).
     // Throws std::length_error beyond kMaxTets, std::bad_alloc when out of
     // memory. Vertices and neighbours are left for the caller to set.
     TetId allocate_tet();
@@ -168,6 +169,7 @@ public:
     bool journal_open() const { return journal_open_; }
 
 private:
+    friend class SlotPool;
     static std::uint8_t constraint_bit(int f) { return static_cast<std::uint8_t>(kFlagConstraintFace0 << f); }
 
     struct alignas(32) TetRecord {
