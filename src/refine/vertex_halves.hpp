@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -25,6 +26,12 @@ struct VertexHalves {
     std::array<std::vector<mesh::VertexId>, 2> inner;  // increasing ids
     std::vector<mesh::VertexId> border;                // increasing ids
 };
+
+// Per vertex of m: 0 or 1 for the half of `vertices` it is in (split at
+// the median of their coordinate along the longest side of their bounding
+// box, ties by id), kNoHalf for the other vertices.
+inline constexpr std::uint8_t kNoHalf = 2;
+std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices);
 
 // Splits `moving` (increasing ids: the vertices a sweep may move; no other
 // vertex moves during it) as above.
