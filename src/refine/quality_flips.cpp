@@ -5,14 +5,18 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
+#include "mesh/chunks.hpp"
 #include "mesh/flips.hpp"
 #include "mesh/key_table.hpp"
+#include "mesh/slot_pool.hpp"
 #include "refine/tet_measures.hpp"
+#include "refine/vertex_halves.hpp"
 
 namespace cbr::refine {
 namespace {
@@ -48,11 +52,20 @@ public:
     // `radius_ratio_floor`: a flip may not make a tetrahedron whose radius
     // ratio is below both this and the worst of those it replaces (0: no
     // condition).
-    Flipper(RefineContext& c, const FlipMeasure& measure, double radius_ratio_floor = 0)
-        : c_(c), m_(c.m), measure_(measure), radius_ratio_floor_(radius_ratio_floor), refused_(c.refused_edges) {
+    // `refused`: the context's table for this sweep (emptied here).
+    Flipper(RefineContext& c, const FlipMeasure& measure, mesh::KeyTable<bool>& refused, double radius_ratio_floor = 0)
+        : c_(c), m_(c.m), measure_(measure), radius_ratio_floor_(radius_ratio_floor), refused_(refused) {
         objective_.measure = measure.oriented;
         refused_.clear();
     }
+    // Flips only among the tetrahedra whose slot `owner` gives to `half`
+    // (improve_by_flips' halves); a flip that would replace another one
+    // is not done, and counted in blocked().
+    void keep_to_half(const std::vector<std::uint8_t>& owner, std::uint8_t half) {
+        owner_ = &owner;
+        half_ = half;
+    }
+    std::size_t blocked() const { return blocked_; }
     bool try_edge(TetId t, VertexId u, VertexId v);
     bool remove_edge(TetId t, VertexId u, VertexId v);
     bool remove_edge_after_another(TetId t, VertexId u, VertexId v);
@@ -115,6 +128,12 @@ private:
     bool removable_shell(VertexId u, VertexId v, TetId t, mesh::Shell& s) const {
         return mesh::shell(m_, u, v, t, s, kMaxShell) && s.size() >= 3 && !s.has_ghost();
     }
+    // Whether t may be replaced (keep_to_half); counts the refusals.
+    bool ours(TetId t) {
+        if (!owner_ || (*owner_)[t] == half_) return true;
+        ++blocked_;
+        return false;
+    }
     // Whether every tetrahedron of shell s is in the domain's `region`;
     // `worst` then falls to the smallest measure among them.
     bool shell_in_region(const mesh::Shell& s, std::int32_t region, double& worst);
@@ -130,6 +149,9 @@ private:
     mesh::TetMesh& m_;
     const FlipMeasure measure_;
     const double radius_ratio_floor_;
+    const std::vector<std::uint8_t>* owner_ = nullptr;  // keep_to_half
+    std::uint8_t half_ = 0;
+    std::size_t blocked_ = 0;
     // Per slot: the measure of the tetrahedron in it, or kUnknown (no
     // measure is negative).
     static constexpr double kUnknown = -1;
@@ -170,8 +192,11 @@ private:
 bool Flipper::try_edge(TetId t, VertexId u, VertexId v) {
     if (c_.is_surface_edge(u, v)) return false;
     if (const bool* refused = refused_.find(mesh::edge_key(u, v)); refused && *refused) return false;
+    const std::size_t blocked = blocked_;
     if (!remove_edge(t, u, v) && !(after_another && remove_edge_after_another(t, u, v))) {
-        refused_[mesh::edge_key(u, v)] = true;
+        // Refused for its shell, unless a tetrahedron of the shell was
+        // not this half's (the border's sweep tries it again).
+        if (blocked_ == blocked) refused_[mesh::edge_key(u, v)] = true;
         return false;
     }
     return true;
@@ -231,7 +256,7 @@ bool Flipper::remove_edge(TetId t, VertexId u, VertexId v) {
 
 bool Flipper::shell_in_region(const mesh::Shell& s, std::int32_t region, double& worst) {
     for (TetId x : s.tets) {
-        if (!c_.in_domain(x) || c_.region(x) != region) return false;
+        if (!ours(x) || !c_.in_domain(x) || c_.region(x) != region) return false;
         worst = std::min(worst, q(x));
     }
     return true;
@@ -346,7 +371,7 @@ bool Flipper::try_face(TetId t, int f) {
     const mesh::FacetRef r = m_.neighbor(t, f);
     const TetId n = facet_tet(r);
     const std::int32_t region = c_.region(t);
-    if (!c_.in_domain(n) || c_.region(n) != region) return false;
+    if (!ours(n) || !c_.in_domain(n) || c_.region(n) != region) return false;
     const VertexId d = m_.vertex(t, f), e = m_.vertex(n, facet_face(r));
     const int* k = kFaceVertices[f];
     const VertexId x[3] = {m_.vertex(t, k[0]), m_.vertex(t, k[1]), m_.vertex(t, k[2])};
@@ -387,30 +412,130 @@ bool Flipper::keeps_radius_ratio(const Replaced& replaced, const Made& made) con
     return true;
 }
 
+// The edge removals of t's six edges, then the 2-3 flips across its
+// faces, until one is done; whether one was.
+bool flip_once(RefineContext& c, Flipper& flipper, TetId t) {
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+            if (flipper.try_edge(t, c.m.vertex(t, i), c.m.vertex(t, j))) return true;
+    for (int f = 0; f < 4; ++f)
+        if (flipper.try_face(t, f)) return true;
+    return false;
+}
+
 // One sweep of `flipper` over the tetrahedra of the bounded regions that
-// `wanted` picks: the edge removals of each one's six edges, then the 2-3
-// flips across its faces, until one is done.
+// `wanted` picks, in slot order (flip_once each).
 template <typename Wanted>
 std::size_t sweep(RefineContext& c, Flipper& flipper, Wanted wanted) {
     std::size_t flips = 0;
     const std::size_t slots = c.m.slot_count();
+    for (TetId t = 0; t < slots; ++t)
+        if (c.in_domain(t) && wanted(t)) flips += flip_once(c, flipper, t);
+    return flips;
+}
+
+// improve_by_flips in two halves, so that two threads (CBR_PARAM_THREADS)
+// can flip at once and the mesh is the same whatever the number of
+// threads. The vertices are split at the median (vertex_halves.hpp); a
+// tetrahedron is a half's when its four corners are in it, the border's
+// otherwise (ghosts too). Each half sweeps its own tetrahedra in slot
+// order and flips only among them (Flipper::keep_to_half), taking new
+// slots from a pool of its own (mesh/slot_pool.hpp); then one sweep, in
+// slot order, over the border's tetrahedra and those a half left (a flip
+// there needed a tetrahedron not its own, or its pool ran low).
+// Why the halves never touch the same data: a flip writes the tetrahedra
+// it replaces (the half's), the slots it fills (its pool's) and the links
+// of the tetrahedra across their outer faces, which share three corners
+// with them, so have at least three in the half. It reads tetrahedra
+// around an edge of the half (at least two corners in it) or across a
+// face of its own (three). A tetrahedron the other half writes has at
+// least three corners there, so at most one here: neither half reads
+// what the other writes.
+constexpr std::uint8_t kBorder = 2;
+// The most slots one flip takes beyond those it frees: an edge removal
+// turns a shell of n <= kMaxShell tetrahedra into 2 (n - 2).
+constexpr std::size_t kMostNewSlots = 2 * (kMaxShell - 2) - kMaxShell;
+// A half's pool: this many slots, plus one per kPoolShare tetrahedra it owns.
+constexpr std::size_t kPoolBase = 64;
+constexpr std::size_t kPoolShare = 8;
+
+// Per slot of m: 0 or 1 for a live tetrahedron with its four corners in
+// that half, kBorder for the others; `owned` counts each half's.
+std::vector<std::uint8_t> tet_halves(const mesh::TetMesh& m, std::array<std::size_t, 2>& owned) {
+    std::vector<VertexId> vertices(m.vertex_count());
+    for (VertexId v = 0; v < vertices.size(); ++v) vertices[v] = v;
+    const std::vector<std::uint8_t> half = median_halves(m, vertices);
+    std::vector<std::uint8_t> owner(m.slot_count(), kBorder);
+    owned = {0, 0};
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t)) continue;
+        const VertexId* w = m.vertices(t);
+        const std::uint8_t h = half[w[0]];
+        if (half[w[1]] != h || half[w[2]] != h || half[w[3]] != h) continue;
+        owner[t] = h;
+        ++owned[h];
+    }
+    return owner;
+}
+
+// One half's sweep over slots [0, slots) (the slots when the pass began,
+// as sweep's); the slots it leaves to the border's sweep go to `again`.
+template <typename Wanted>
+std::size_t sweep_half(RefineContext& c, Flipper& flipper, std::size_t slots, const std::vector<std::uint8_t>& owner,
+                       std::uint8_t half, const mesh::SlotPool& pool, Wanted wanted, std::vector<TetId>& again) {
+    std::size_t flips = 0;
     for (TetId t = 0; t < slots; ++t) {
-        if (!c.in_domain(t) || !wanted(t)) continue;
-        bool done = false;
-        for (int i = 0; i < 4 && !done; ++i)
-            for (int j = i + 1; j < 4 && !done; ++j)
-                done = flipper.try_edge(t, c.m.vertex(t, i), c.m.vertex(t, j));
-        for (int f = 0; f < 4 && !done; ++f) done = flipper.try_face(t, f);
-        flips += done;
+        if (owner[t] != half || !c.in_domain(t) || !wanted(t)) continue;
+        if (pool.size() < kMostNewSlots) {
+            again.push_back(t);
+            continue;
+        }
+        const std::size_t blocked = flipper.blocked();
+        if (flip_once(c, flipper, t)) ++flips;
+        else if (flipper.blocked() != blocked) again.push_back(t);
     }
     return flips;
 }
 
 }  // namespace
 
-std::size_t improve_by_flips(RefineContext& c, double threshold) {
-    Flipper flipper(c, kRadiusRatio);
-    return sweep(c, flipper, [&](TetId t) { return c.changed_near(t) && flipper.q(t) < threshold; });
+HalvesFlips improve_by_flips(RefineContext& c, double threshold, std::vector<TetChange>* log) {
+    const std::size_t slots = c.m.slot_count();
+    std::array<std::size_t, 2> owned;
+    std::vector<std::uint8_t> owner = tet_halves(c.m, owned);
+    std::array<std::unique_ptr<mesh::SlotPool>, 2> pools;
+    for (std::uint8_t h = 0; h < 2; ++h)
+        pools[h] = std::make_unique<mesh::SlotPool>(c.m, kPoolBase + owned[h] / kPoolShare);
+    owner.resize(c.m.slot_count(), kBorder);
+    for (std::uint8_t h = 0; h < 2; ++h)
+        for (TetId s : pools[h]->slots()) owner[s] = h;
+    c.reserve_slots();
+    HalvesFlips flips;
+    std::array<std::vector<TetId>, 2> again;
+    std::array<std::vector<TetChange>, 2> logs;
+    mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const auto h = static_cast<std::uint8_t>(k);
+            const mesh::SlotPool::Use use(*pools[h]);
+            Flipper flipper(c, kRadiusRatio, c.half_refused_edges[h]);
+            flipper.keep_to_half(owner, h);
+            if (log) flipper.log = &logs[h];
+            flips.in_half[h] = sweep_half(c, flipper, slots, owner, h, *pools[h],
+                                  [&](TetId t) { return c.changed_near(t) && flipper.q(t) < threshold; }, again[h]);
+        }
+    });
+    for (std::unique_ptr<mesh::SlotPool>& pool : pools) pool.reset();  // the slots left back to the free list
+    std::vector<char> retry(slots, 0);
+    for (const std::vector<TetId>& list : again)
+        for (TetId t : list) retry[t] = 1;
+    if (log)
+        for (std::vector<TetChange>& half_log : logs) log->insert(log->end(), half_log.begin(), half_log.end());
+    Flipper border(c, kRadiusRatio, c.refused_edges);
+    border.log = log;
+    flips.on_border = sweep(c, border, [&](TetId t) {
+        return t < slots && (owner[t] == kBorder || retry[t]) && c.changed_near(t) && border.q(t) < threshold;
+    });
+    return flips;
 }
 
 DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees, double keep_radius_ratio,
@@ -428,7 +553,7 @@ DihedralFlips improve_dihedrals_by_flips(RefineContext& c, double below_degrees,
         const std::uint32_t from = k > 0 ? flips.last_sweep : since;  // since 0: all
         c.start_pass();
         flips.last_sweep = c.pass();
-        Flipper flipper(c, kMinDihedral, keep_radius_ratio);
+        Flipper flipper(c, kMinDihedral, c.refused_edges, keep_radius_ratio);
         flipper.after_another = c.options.edge_removal_after_another;
         flipper.chords_up_to_removed_edge = c.options.dihedral_chords_up_to_removed_edge;
         flipper.log = log;

@@ -11,6 +11,7 @@
 // and no new edge breaks the size bound.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -21,8 +22,16 @@ namespace cbr::refine {
 // One sweep over the tetrahedra of the bounded regions whose radius ratio
 // is below `threshold` and that changed, or have a face neighbour that
 // changed, since the previous pass (RefineContext::changed_near); returns
-// the number of flips done.
-std::size_t improve_by_flips(RefineContext& c, double threshold);
+// the number of flips done. The sweep runs in two halves of the mesh, at
+// once with c.options.threads > 1, then over their border (the mesh is the
+// same with any number of threads; quality_flips.cpp). For tests, `log`
+// gets each flip (the two halves' in turn, then the border's).
+struct HalvesFlips {
+    std::array<std::size_t, 2> in_half = {0, 0};  // flips among the tetrahedra of each half
+    std::size_t on_border = 0;                     // flips of the sweep after them
+    std::size_t total() const { return in_half[0] + in_half[1] + on_border; }
+};
+HalvesFlips improve_by_flips(RefineContext& c, double threshold, std::vector<TetChange>* log = nullptr);
 
 // The same flips judged by the smallest dihedral angle instead (Table II's
 // minimum dihedral angle, which the radius ratio does not always follow):

@@ -64,7 +64,7 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             (!steiner_progress || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
             break;
         c.start_pass();
-        const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold) : 0;
+        const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold).total() : 0;
         const std::size_t moves = options.smoothing ? smooth_vertices(c) : 0;
         // §6: the Steiner points that still have a bad tetrahedron are
         // suppressed if their ball now allows it, else moved together

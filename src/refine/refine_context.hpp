@@ -39,7 +39,10 @@ public:
     // emptied by each sweep: kept here so that its storage, millions of
     // edges on large meshes, is reused rather than grown again from empty
     // by every sweep (igea: that growth was 3% of the mesh generation).
+    // One for a sweep of the whole mesh or of the border, one for each
+    // half of improve_by_flips.
     mesh::KeyTable<bool> refused_edges;
+    std::array<mesh::KeyTable<bool>, 2> half_refused_edges;
 
     // Region of slot t (0 outside, or for slots not assigned).
     std::int32_t region(mesh::TetId t) const { return t < region_.size() ? region_[t] : 0; }
@@ -71,10 +74,12 @@ public:
     // and would fail again.
     void start_pass() { ++pass_; }
     void touch(mesh::TetId t);
-    // Room for the stamp of every slot of m, so that touch() does not grow
-    // the array: before threads touch tetrahedra at once.
-    void reserve_stamps() {
+    // Room for the region and stamp of every slot of m, so that touch()
+    // and set_region() do not grow the arrays: before threads reshape or
+    // replace tetrahedra at once.
+    void reserve_slots() {
         if (stamp_.size() < m.slot_count()) stamp_.resize(m.slot_count(), 0);
+        if (region_.size() < m.slot_count()) region_.resize(m.slot_count(), -1);
     }
     // The current pass, and whether t was created or reshaped in that pass
     // or after it.

@@ -420,7 +420,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
 template <typename Move>
 std::size_t move_in_halves(RefineContext& c, const std::vector<VertexId>& moving, Move move) {
     const VertexHalves halves = split_in_halves(c.m, moving);
-    c.reserve_stamps();
+    c.reserve_slots();
     std::array<std::size_t, 2> moved = {0, 0};
     mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
         Smoother s(c);
