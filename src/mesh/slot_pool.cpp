@@ -25,7 +25,12 @@ SlotPool::SlotPool(TetMesh& m, std::size_t count) : m_(m) {
     }
 }
 
-SlotPool::~SlotPool() { m_.free_.insert(m_.free_.end(), free_.begin(), free_.end()); }
+SlotPool::~SlotPool() {
+    try {
+        m_.free_.insert(m_.free_.end(), free_.begin(), free_.end());
+    } catch (...) {  // out of memory: the slots stay flagged free, leaked but not live (as surgery's releases)
+    }
+}
 
 TetId SlotPool::take() {
     if (free_.empty()) throw std::logic_error("a thread's slot pool is empty");

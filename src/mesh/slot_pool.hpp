@@ -21,7 +21,8 @@ public:
     // new slots at the end of the mesh (flagged free). Not while m's
     // journal is open (undo would not know the pool).
     SlotPool(TetMesh& m, std::size_t count);
-    // Gives the slots left back to m's free list, in the pool's order.
+    // Gives the slots left back to m's free list, in the pool's order
+    // (without memory for that, they stay flagged free: leaked, not live).
     ~SlotPool();
     SlotPool(const SlotPool&) = delete;
     SlotPool& operator=(const SlotPool&) = delete;
