@@ -201,6 +201,47 @@ TEST_CASE("threads: the smoothing halves: no edge joins inner vertices of both, 
         joining += has[0] && has[1];
     }
     CHECK(joining == 0);
+    // The split: half the moving vertices each (median_halves), every
+    // one of the first at or below every one of the second along one
+    // axis; a border vertex has a tetrahedron with a moving corner in
+    // each half (so the border is no wider than it must be), an inner
+    // one none.
+    const std::vector<std::uint8_t> half = cbr::refine::median_halves(m, moving);
+    std::size_t in_first = 0, misplaced = 0;
+    for (VertexId v = 0; v < m.vertex_count(); ++v) {
+        misplaced += (half[v] != cbr::refine::kNoHalf) != std::binary_search(moving.begin(), moving.end(), v);
+        in_first += half[v] == 0;
+    }
+    CHECK(misplaced == 0);
+    CHECK(in_first == moving.size() / 2);
+    bool some_axis_splits = false;
+    for (int k = 0; k < 3; ++k) {
+        double top_of_first = -HUGE_VAL, bottom_of_second = HUGE_VAL;
+        for (VertexId v : moving) {
+            if (half[v] == 0) top_of_first = std::max(top_of_first, m.point(v)[k]);
+            else bottom_of_second = std::min(bottom_of_second, m.point(v)[k]);
+        }
+        some_axis_splits = some_axis_splits || top_of_first <= bottom_of_second;
+    }
+    CHECK(some_axis_splits);
+    std::vector<char> reaches_both(m.vertex_count(), 0);
+    for (TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t)) continue;
+        bool has[2] = {false, false};
+        for (int i = 0; i < 4; ++i) {
+            const VertexId u = m.vertex(t, i);
+            if (u != cbr::mesh::kGhostVertex && half[u] < 2) has[half[u]] = true;
+        }
+        if (has[0] && has[1])
+            for (int i = 0; i < 4; ++i)
+                if (m.vertex(t, i) != cbr::mesh::kGhostVertex) reaches_both[m.vertex(t, i)] = 1;
+    }
+    std::size_t border_without_reach = 0, inner_with_reach = 0;
+    for (VertexId v : halves.border) border_without_reach += !reaches_both[v];
+    for (const std::vector<VertexId>& inner : halves.inner)
+        for (VertexId v : inner) inner_with_reach += reaches_both[v];
+    CHECK(border_without_reach == 0);
+    CHECK(inner_with_reach == 0);
     // Split at the median, through the middle of a cube of points: halves
     // of equal work, and a thin border between them.
     const std::size_t half0 = halves.inner[0].size(), half1 = halves.inner[1].size();
