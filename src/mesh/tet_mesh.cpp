@@ -1,10 +1,10 @@
 #include "mesh/tet_mesh.hpp"
 
-#include "mesh/slot_pool.hpp"
-
 #include <algorithm>
 #include <cassert>
 #include <stdexcept>
+
+#include "mesh/slot_pool.hpp"
 
 namespace cbr::mesh {
 
@@ -31,7 +31,8 @@ void TetMesh::set_vertices(TetId t, VertexId a, VertexId b, VertexId c, VertexId
 }
 
 TetId TetMesh::allocate_tet() {
-    if (SlotPool* pool = SlotPool::in_use(*this)) return pool->take();
+    if (slot_pools_ != 0)
+        if (SlotPool* pool = SlotPool::in_use(*this)) return pool->take();
     if (!free_.empty()) {
         const TetId t = free_.back();
         before_change(t);
@@ -53,7 +54,8 @@ TetId TetMesh::allocate_tet() {
 void TetMesh::release_tet(TetId t) {
     before_change(t);
     flags_[t] = kFlagFree;
-    if (SlotPool* pool = SlotPool::in_use(*this)) return pool->give(t);
+    if (slot_pools_ != 0)
+        if (SlotPool* pool = SlotPool::in_use(*this)) return pool->give(t);
     free_.push_back(t);
 }
 

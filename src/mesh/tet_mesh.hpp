@@ -193,6 +193,10 @@ private:
     LargeArray<TetRecord> tets_;
     LargeArray<std::uint8_t> flags_;
     std::vector<TetId> free_;
+    // SlotPools taken from this mesh and not yet given back: while 0,
+    // allocation does not look for the calling thread's pool (Delaunay
+    // and recovery allocate in their inner loops).
+    std::size_t slot_pools_ = 0;
     bool journal_open_ = false;
     struct Journal {
         std::uint32_t epoch = 0;            // one per open_journal()
