@@ -159,11 +159,12 @@ extern "C" {
 /* Threads the library may use, for the passes that only read the whole
    mesh (the exact validity checks that end cbr_mesh_recover_faces and
    cbr_mesh_refine, the lookup of the input triangles among the faces of
-   the mesh, Table II) and for the smoothing sweeps and quality flips of
-   cbr_mesh_refine (two halves of the mesh at once): 1 (default) = the
-   calling thread alone; n > 1 = up to n threads at a time, started and
-   joined within the call; 0 = as many as the hardware runs at once. Every result is the same, bit for bit,
-   whatever the value. An integer within [0, 256]. */
+   the mesh, Table II) and for the field points, smoothing sweeps and
+   quality flips of cbr_mesh_refine (two halves of the mesh at once):
+   1 (default) = the calling thread alone; n > 1 = up to n threads at a
+   time, started and joined within the call; 0 = as many as the hardware
+   runs at once. Every result is the same, bit for bit, whatever the
+   value. An integer within [0, 256]. */
 #define CBR_PARAM_THREADS 11
 
 /* ------------------------------------------------------------------------ */

@@ -31,6 +31,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/slot_marks.hpp"
+#include "mesh/slot_pool.hpp"
 #include "mesh/surgery.hpp"
 
 namespace cbr::recover {
@@ -99,6 +100,14 @@ public:
     std::size_t size() const { return count_; }
     std::size_t removed() const { return removed_; }
     std::size_t added() const { return added_; }
+    // Faces between a member and a tetrahedron outside: the star's size.
+    std::size_t boundary_face_count() const {
+        std::size_t count = 0;
+        for (TetId t : s_.members)
+            if (in(t))
+                for (int f = 0; f < 4; ++f) count += in(across(t, f)) ? 0 : 1;
+        return count;
+    }
 
 private:
     // A slot's marks (s_.tet_marks), for the current insertion.
@@ -513,6 +522,15 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     // tetrahedron with p in place of the vertex opposite the face (same
     // side, so the orientation is kept), listed by tetrahedron (sorted
     // ids) then face.
+    // On a thread with a slot pool (mesh/slot_pool.hpp), the star must fit
+    // in the cavity's slots and the pool's: an empty pool throws halfway
+    // through a replacement.
+    if (const mesh::SlotPool* pool = mesh::SlotPool::in_use(m)) {
+        if (c.boundary_face_count() > c.size() + pool->size()) {
+            res.why = "the thread's slot pool cannot hold the star";
+            return res;
+        }
+    }
     res.cavity.clear();
     for (TetId t : c.tets()) res.cavity.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
     const mesh::ReplaceResult r = scratch_->star.replace(m, c.tets(), p, &res.created);

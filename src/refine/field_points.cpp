@@ -1,353 +1,171 @@
 #include "refine/field_points.hpp"
 
+#include <algorithm>
 #include <array>
-#include <cmath>
-#include <deque>
-#include <limits>
+#include <memory>
 #include <vector>
 
-#include "geom/predicates.hpp"
-#include "mesh/slot_marks.hpp"
-#include "recover/protected_insertion.hpp"
-#include "refine/locate.hpp"
-#include "refine/tet_measures.hpp"
+#include "mesh/chunks.hpp"
+#include "mesh/slot_pool.hpp"
+#include "refine/field_refiner.hpp"
+#include "refine/vertex_halves.hpp"
 
 namespace cbr::refine {
 namespace {
 
-using mesh::facet_tet;
-using mesh::kFaceVertices;
 using mesh::TetId;
 using mesh::VertexId;
 
-// A fallback midpoint must be at least this fraction of its edge's length
-// away from the constraint faces around it.
-constexpr double kMinSurfaceGap = 0.1;
+// The field points in two halves (the quality flips' scheme,
+// quality_flips.cpp), so that two threads (CBR_PARAM_THREADS) can insert at
+// once and the mesh is the same whatever the number of threads. The
+// vertices are split at the median (vertex_halves.hpp) and labelled; a
+// tetrahedron is a half's when its four corners carry its label
+// (HalfClaim). First the border, the tetrahedra of neither half, is refined
+// on one thread, each new point labelled by its side of the median plane,
+// until what is left across the plane meets the field (the first Delaunay
+// tetrahedra of a surface are large: a half would have to leave every
+// cavity that meets them). Then each half refines its own tetrahedra,
+// queued in slot order, with its own queue, insertion scratch and slot
+// pool; its points get its label, so the star of a cavity of the half's is
+// the half's again. A tetrahedron whose refinement needs one not its own
+// (a walk, a cavity or a correction that would enter it) is left for the
+// border's refinement, which takes those last, on one thread. On
+// common3d-igea the border's two parts insert 2.5% of the points.
+// Why the halves never touch the same data: an insertion writes the
+// tetrahedra of its cavity (the half's), the slots of its pool and the links
+// of the tetrahedra across the cavity's boundary, which share three corners
+// with it. It reads the half's tetrahedra and the corners (not the links) of
+// their face neighbours, which have three corners in the half. A
+// tetrahedron the other half writes has at least three corners there, so
+// at most one here.
+// Vertex ids: each round gives each half a range of ids taken ahead (the
+// mesh's coordinates, the sizing field and the labels grown once, so no
+// array grows under a thread) and a pool of slots; a half stops when its
+// range or pool runs short, and when both have stopped, the ids half 1 used
+// close up after half 0's. So the points are numbered round by round, half
+// 0's before half 1's, whatever the number of threads.
+constexpr std::size_t kSlotsPerId = 8;  // a point adds about 6.3 tetrahedra net
 
-// Quality refinement stops at tetrahedra whose circumradius is below this
-// fraction of the local size (see meets_quality).
-constexpr double kMinQualityRadius = 0.5;
-
-// A circumcentre nearer than this fraction of the circumradius to a vertex
-// of its cavity is refused (see try_circumcentre).
-constexpr double kMinCircumcentreGap = 0.1;
-
-// Slivers: a radius ratio below this fails the quality bound whatever the
-// radius-edge ratio says (a sliver can have a fine radius-edge ratio), and
-// gets its centroid when its circumcentre is refused, if the star is at
-// least kSliverGain times better.
-constexpr double kSliverQuality = 0.1;
-constexpr double kSliverGain = 2.0;
-
-// A queued tetrahedron, with its vertices: the slot may have been reused.
-struct Entry {
-    TetId t;
-    std::array<VertexId, 4> v;
-};
-
-class Refiner {
-public:
-    Refiner(RefineContext& c, RefineStats& stats) : c_(c), m_(c.m), stats_(stats) {}
-    void run(const std::vector<TetId>* seeds);
-
-private:
-    void push(TetId t) {
-        const VertexId* v = m_.vertices(t);
-        queue_.push_back({t, {v[0], v[1], v[2], v[3]}});
-    }
-    bool current(const Entry& e) const {
-        if (m_.is_free(e.t) || !c_.in_domain(e.t)) return false;
-        const VertexId* v = m_.vertices(e.t);
-        return v[0] == e.v[0] && v[1] == e.v[1] && v[2] == e.v[2] && v[3] == e.v[3];
-    }
-    bool meets_quality(TetId t) const;
-    struct Probe {
-        bool encroaches = false;
-        double gap = std::numeric_limits<double>::infinity();
-        double star_quality = 2;  // when asked
-        double nearest2 = std::numeric_limits<double>::infinity();  // squared distance to the nearest cavity vertex
-        // The cavity (probe_cavity_) is the one the insertion would grow:
-        // no ghost met, and no constraint face between two of its members
-        // (where the insertion's growth refuses a tetrahedron).
-        bool reusable = true;
-    };
-    // What makes a caller refuse a point, so that probe() can stop as soon
-    // as it is certain: the cavity meets a constraint face whose diametral
-    // ball holds the point, a constraint face's plane nearer than min_gap,
-    // or a star quality at or below min_star_quality. The answer that
-    // refuses is then exact; the other fields are partial.
-    struct Refusal {
-        bool encroaching = false;
-        double min_gap = 0;
-        double min_star_quality = -2;
-    };
-    Probe probe(TetId start, const double* p, bool want_star, const Refusal& refusal);
-    void measure_constraint_face(TetId t, int f, const double* p, Probe& out) const;
-    bool try_centroid(TetId t);
-    bool insert(const Point& p, TetId start, const Probe& probed);
-    bool try_circumcentre(TetId t);
-    bool try_edge_midpoint(TetId t);
-    std::size_t point_cap() const;
-
-    RefineContext& c_;
-    mesh::TetMesh& m_;
-    RefineStats& stats_;
-    std::deque<Entry> queue_;
-    recover::ProtectedInserter inserter_;  // keeps its scratch storage across insertions
-    // probe()'s scratch: its cavity, and per slot whether a tetrahedron
-    // was tested (kTested) and is in the cavity (kInCavity), in the
-    // inserter's shared marks (the insertion that follows reads the same
-    // words).
-    static constexpr std::uint8_t kTested = 1u << 0;
-    static constexpr std::uint8_t kInCavity = 1u << 1;
-    std::vector<TetId> probe_cavity_;
-};
-
-// Also "met" when the circumradius is already below kMinQualityRadius times
-// the local size: a circumcentre there would sit closer than that to the
-// corners, and near small input angles (which the surface keeps) such
-// insertions cascade without end (the classic limit of Delaunay
-// refinement; TetGen's -Y meshes stop there too).
-bool Refiner::meets_quality(TetId t) const {
-    const VertexId* v = m_.vertices(t);
-    const double* p[4] = {m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
-    if (radius_edge_ratio(p[0], p[1], p[2], p[3]) <= c_.options.quality_bound &&
-        radius_ratio(p[0], p[1], p[2], p[3]) >= kSliverQuality)
-        return true;
-    Point cc;
-    if (!circumcentre(p[0], p[1], p[2], p[3], cc)) return false;
-    const double h = 0.25 * (c_.size.at(v[0]) + c_.size.at(v[1]) + c_.size.at(v[2]) + c_.size.at(v[3]));
-    const double r = kMinQualityRadius * h;
-    return squared_distance(cc.data(), p[0]) < r * r;
-}
-
-// p's (Bowyer-Watson) cavity, grown from start the way insert_protected
-// grows it (insphere_sos conflicts, never across a constraint face), and
-// what its boundary says: whether p lies in the diametral ball of a
-// constraint face (it encroaches), its smallest distance to their planes
-// (counted where its projection falls within the face's circumcircle),
-// and, when asked, the smallest quality of the star (every boundary face
-// coned to p; -1 when p does not see a boundary face strictly, where the
-// §5.1 correction would change the cavity). Stops early once `refusal`
-// holds: most candidates near a thin CAD wall encroach, and their
-// cavities are the largest.
-Refiner::Probe Refiner::probe(TetId start, const double* p, bool want_star, const Refusal& refusal) {
-    Probe out;
-    std::vector<TetId>& cavity = probe_cavity_;
-    mesh::SlotMarks& marks = inserter_.shared_marks();
-    marks.new_round(m_.slot_count());
-    cavity.assign(1, start);
-    marks.set(start, kTested | kInCavity);
-    for (std::size_t i = 0; i < cavity.size(); ++i) {
-        const TetId t = cavity[i];
-        for (int f = 0; f < 4; ++f) {
-            if (m_.is_constrained(t, f)) {
-                measure_constraint_face(t, f, p, out);
-                if ((refusal.encroaching && out.encroaches) || out.gap < refusal.min_gap) return out;
-                continue;
-            }
-            const TetId n = facet_tet(m_.neighbor(t, f));
-            if (m_.is_ghost(n)) {
-                out.reusable = false;  // the insertion's growth tests ghosts
-                continue;
-            }
-            if (marks.has(n, kTested)) continue;
-            marks.set(n, kTested);
-            const VertexId* w = m_.vertices(n);
-            if (geom::insphere_sos(m_.point(w[0]), m_.point(w[1]), m_.point(w[2]), m_.point(w[3]), p) > 0) {
-                cavity.push_back(n);
-                marks.set(n, kInCavity);
+// Moves the ids [from, from + count) of the last round's second half down to
+// `to`, after the first half's, and drops the ids beyond.
+void close_up_ids(RefineContext& c, std::vector<std::uint8_t>& label, FieldRefiner& second, VertexId from, VertexId to,
+                  std::size_t count) {
+    mesh::TetMesh& m = c.m;
+    const VertexId end = static_cast<VertexId>(from + count);
+    const auto renumber = [&](VertexId v) { return v >= from && v < end ? v - (from - to) : v; };
+    if (from != to && count > 0) {
+        for (std::size_t i = 0; i < count; ++i) {
+            m.set_point(static_cast<VertexId>(to + i), m.point(static_cast<VertexId>(from + i)));
+            c.size.set(static_cast<VertexId>(to + i), c.size.at(static_cast<VertexId>(from + i)));
+            label[to + i] = label[from + i];
+        }
+        for (TetId t = 0; t < m.slot_count(); ++t) {
+            if (m.is_free(t)) continue;
+            for (int i = 0; i < 4; ++i) {
+                const VertexId v = m.vertex(t, i);
+                if (v >= from && v < end) m.set_vertex(t, i, renumber(v));
             }
         }
+        second.renumber_queued(renumber);
     }
-    for (const TetId t : cavity) {
-        const VertexId* v = m_.vertices(t);
-        for (int f = 0; f < 4; ++f) {
-            const bool constrained = m_.is_constrained(t, f);
-            const bool inner = marks.has(facet_tet(m_.neighbor(t, f)), kInCavity);
-            if (constrained && inner) out.reusable = false;
-            if (!constrained && inner) continue;  // interior face
-            const int* k = kFaceVertices[f];
-            const double* a = m_.point(v[k[0]]);
-            const double* b = m_.point(v[k[1]]);
-            const double* c = m_.point(v[k[2]]);
-            for (const double* corner : {a, b, c}) out.nearest2 = std::min(out.nearest2, squared_distance(p, corner));
-            if (want_star && out.star_quality >= 0) {
-                if (geom::orient3d(a, b, c, p) <= 0) out.star_quality = -1;
-                else out.star_quality = std::min(out.star_quality, radius_ratio(a, b, c, p));
-                if (out.star_quality <= refusal.min_star_quality) return out;
+    m.truncate_vertices(to + count);
+    c.size.truncate(to + count);
+    label.resize(to + count);
+}
+
+void insert_in_halves(RefineContext& c, RefineStats& stats, FieldPointsLog* log) {
+    mesh::TetMesh& m = c.m;
+    const std::size_t at_start = stats.field_points;
+    std::vector<VertexId> all(m.vertex_count());
+    for (VertexId v = 0; v < all.size(); ++v) all[v] = v;
+    MedianPlane plane;
+    std::vector<std::uint8_t> label = median_halves(m, all, &plane);
+    FieldRefiner border(c, stats);
+    const std::size_t cap = border.point_cap();
+    border.keep_to_border(&label, plane);
+    for (TetId t = 0; t < m.slot_count(); ++t)
+        if (c.in_domain(t)) border.queue_tet(t);
+    border.set_cap(cap);
+    if (log) border.set_log(&log->insertions);
+    border.run_queue();
+    const std::size_t border_before = stats.field_points - at_start;
+    border.keep_to_border(nullptr, plane);
+    const std::size_t half_cap = cap - std::min(cap, stats.field_points);
+    std::array<RefineStats, 2> half_stats;
+    std::array<std::unique_ptr<FieldRefiner>, 2> halves;
+    std::array<std::vector<TetChange>, 3> logs;  // the halves', the border's after them
+    for (std::uint8_t h = 0; h < 2; ++h) {
+        halves[h] = std::make_unique<FieldRefiner>(c, half_stats[h]);
+        halves[h]->queue_claimed({&label, h});
+        if (log) halves[h]->set_log(&logs[h]);
+    }
+    std::array<bool, 2> left = {true, true};
+    for (std::size_t ids = std::max<std::size_t>(1, c.options.field_point_round); left[0] || left[1]; ids *= 2) {
+        const std::size_t first = m.vertex_count();
+        if (first + 2 * ids > mesh::kMaxVertices) break;  // the border's refinement goes on with the cap
+        const std::vector<double> unset(3 * 2 * ids, 0.0);
+        m.add_points(unset.data(), 2 * ids);
+        for (std::size_t i = 0; i < 2 * ids; ++i) c.add_vertex(0);
+        label.resize(first + 2 * ids, kNoHalf);
+        std::array<FieldRefiner::HalfRound, 2> rounds;
+        std::array<std::unique_ptr<mesh::SlotPool>, 2> pools;
+        for (std::uint8_t h = 0; h < 2; ++h) {
+            rounds[h].claim = {&label, h};
+            rounds[h].label = &label;
+            rounds[h].next_id = static_cast<VertexId>(first + h * ids);
+            rounds[h].end_id = static_cast<VertexId>(first + (h + 1) * ids);
+            rounds[h].cap = h == 0 ? half_cap / 2 : half_cap - half_cap / 2;
+            if (!left[h]) continue;
+            pools[h] = std::make_unique<mesh::SlotPool>(m, FieldRefiner::kSlotMargin + kSlotsPerId * ids);
+            rounds[h].pool = pools[h].get();
+        }
+        c.reserve_slots();
+        mesh::run_chunks(2, c.options.threads > 1 ? 2 : 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t h = begin; h < end; ++h) {
+                if (!left[h]) continue;
+                const mesh::SlotPool::Use use(*pools[h]);
+                left[h] = halves[h]->run_round(rounds[h]);
             }
-        }
+        });
+        for (std::unique_ptr<mesh::SlotPool>& pool : pools) pool.reset();  // the slots left back to the free list
+        for (std::unique_ptr<FieldRefiner>& half : halves) half->drop_stale();
+        const std::size_t used0 = rounds[0].next_id - first;
+        const std::size_t used1 = rounds[1].next_id - (first + ids);
+        close_up_ids(c, label, *halves[1], static_cast<VertexId>(first + ids), static_cast<VertexId>(first + used0),
+                     used1);
+        if (half_stats[0].point_cap_hit || half_stats[1].point_cap_hit) break;
     }
-    return out;
-}
-
-// Whether p encroaches on constraint face f of t (lies in its diametral
-// ball), and its distance to the face's plane where p's projection falls
-// within the face's circumcircle, folded into `out`.
-void Refiner::measure_constraint_face(TetId t, int f, const double* p, Probe& out) const {
-    const VertexId* v = m_.vertices(t);
-    const int* k = kFaceVertices[f];
-    const double* a = m_.point(v[k[0]]);
-    const double* b = m_.point(v[k[1]]);
-    const double* c = m_.point(v[k[2]]);
-    Point centre;
-    double r2 = 0;
-    if (!triangle_circumsphere(a, b, c, centre, r2)) return;
-    const double d2 = squared_distance(p, centre.data());
-    if (d2 < r2) out.encroaches = true;
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const double h = (n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2])) / std::sqrt(nn);
-    if (d2 - h * h < r2) out.gap = std::min(out.gap, std::fabs(h));
-}
-
-// A sliver (radius ratio under kSliverQuality) whose circumcentre was
-// refused: its centroid, when the star it would make is strictly better
-// than the sliver (checked on the cavity before inserting: there is no
-// undo).
-bool Refiner::try_centroid(TetId t) {
-    const VertexId* v = m_.vertices(t);
-    const double* q[4] = {m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3])};
-    const double old_q = radius_ratio(q[0], q[1], q[2], q[3]);
-    if (old_q >= kSliverQuality) return false;
-    Point g;
-    for (int k = 0; k < 3; ++k) g[k] = 0.25 * (q[0][k] + q[1][k] + q[2][k] + q[3][k]);
-    const Location loc = locate_in_region(c_, t, g.data());
-    if (loc.where != Located::kInside) return false;
-    Refusal refusal;
-    refusal.encroaching = true;
-    refusal.min_star_quality = kSliverGain * old_q;
-    const Probe pr = probe(loc.tet, g.data(), true, refusal);
-    if (pr.encroaches || pr.star_quality <= kSliverGain * old_q) return false;
-    return insert(g, loc.tet, pr);
-}
-
-// Inserts p (found in `start`), whose cavity `probed` describes: when the
-// probe's cavity is the one the insertion would grow, it is handed over
-// instead of grown again (same set of tetrahedra, so the same star).
-bool Refiner::insert(const Point& p, TetId start, const Probe& probed) {
-    const std::int32_t region = c_.region(start);
-    const double h = c_.size.for_new_point(m_, start, p.data());
-    const VertexId id = m_.add_points(p.data(), 1);
-    const recover::ProtectedInsertResult& res = probed.reusable
-                                                    ? inserter_.insert_in_cavity(m_, id, start, probe_cavity_)
-                                                    : inserter_.insert(m_, id, start);
-    if (!res.ok) {
-        m_.truncate_vertices(id);
-        return false;
+    for (const RefineStats& h : half_stats) {
+        stats.field_points += h.field_points;
+        stats.size_fallbacks += h.size_fallbacks;
+        stats.rejected += h.rejected;
+        stats.cavity_tets += h.cavity_tets;
+        stats.point_cap_hit = stats.point_cap_hit || h.point_cap_hit;
     }
-    c_.add_vertex(h);
-    stats_.cavity_tets += res.initial_cavity + res.added - res.removed;
-    for (TetId t : res.created) {
-        c_.set_region(t, region);
-        push(t);
-    }
-    ++stats_.field_points;
-    return true;
-}
-
-bool Refiner::try_circumcentre(TetId t) {
-    const VertexId* v = m_.vertices(t);
-    Point cc;
-    if (!circumcentre(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]), cc)) return false;
-    const Location loc = locate_in_region(c_, t, cc.data());
-    if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
-    Refusal refusal;
-    refusal.encroaching = true;
-    const Probe pr = probe(loc.tet, cc.data(), false, refusal);
-    if (pr.encroaches) return false;
-    // In a Delaunay cavity no vertex is nearer to the circumcentre than the
-    // circumradius; the cavity correction and the protected faces can
-    // leave one much nearer, and a point there makes needles and slivers
-    // that nothing removes later (common3d-fandisk: two field points 5e-6
-    // apart, at a local size of 0.05).
-    const double r2 = squared_distance(cc.data(), m_.point(v[0]));
-    if (pr.nearest2 < kMinCircumcentreGap * kMinCircumcentreGap * r2) return false;
-    return insert(cc, loc.tet, pr);
-}
-
-bool Refiner::try_edge_midpoint(TetId t) {
-    const VertexId* v = m_.vertices(t);
-    int bi = -1, bj = -1;
-    double worst = 1;
-    for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) {
-            if (c_.edge_within_size(v[i], v[j])) continue;
-            const double bound = kEdgeFactor * c_.edge_size(v[i], v[j]);
-            const double excess = std::sqrt(squared_distance(m_.point(v[i]), m_.point(v[j]))) / bound;
-            if (excess > worst) worst = excess, bi = i, bj = j;
-        }
-    if (bi < 0) return false;
-    const double* a = m_.point(v[bi]);
-    const double* b = m_.point(v[bj]);
-    const Point mid = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-    const Location loc = locate_in_region(c_, t, mid.data());
-    if (loc.where != Located::kInside && loc.where != Located::kOnFace) return false;
-    // Too close to the surface: splitting again and again toward a face
-    // that cannot be split would only make flat elements.
-    const double length = std::sqrt(squared_distance(a, b));
-    Refusal refusal;
-    refusal.min_gap = kMinSurfaceGap * length;
-    const Probe pr = probe(loc.tet, mid.data(), false, refusal);
-    if (pr.gap < kMinSurfaceGap * length) return false;
-    return insert(mid, loc.tet, pr);
-}
-
-// A guard against runaway refinement: 10x the number of points an ideal
-// mesh of the field would have (about one point per 5 tetrahedra), plus a
-// margin.
-std::size_t Refiner::point_cap() const {
-    double ideal_tets = 0;
-    for (TetId t = 0; t < m_.slot_count(); ++t) {
-        if (!c_.in_domain(t)) continue;
-        const VertexId* v = m_.vertices(t);
-        const double* a = m_.point(v[0]);
-        double h = c_.size.at(v[0]);
-        for (int i = 1; i < 4; ++i) h = std::min(h, c_.size.at(v[i]));
-        const double six_v = six_volume(a, m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
-        // regular tetrahedron of edge h: volume h^3 / (6 sqrt 2)
-        ideal_tets += (six_v / 6) / (h * h * h / 8.48528137423857);
-    }
-    return static_cast<std::size_t>(std::min(2.0 * ideal_tets + 1000.0, 1.0e9));
-}
-
-void Refiner::run(const std::vector<TetId>* seeds) {
-    if (seeds) {
-        for (TetId t : *seeds)
-            if (t < m_.slot_count() && !m_.is_free(t) && c_.in_domain(t)) push(t);
-    } else {
-        for (TetId t = 0; t < m_.slot_count(); ++t)
-            if (c_.in_domain(t)) push(t);
-    }
-    const std::size_t cap = point_cap();
-    while (!queue_.empty()) {
-        const Entry e = queue_.front();
-        queue_.pop_front();
-        if (!current(e)) continue;
-        const bool size_ok = c_.tet_within_size(e.t);
-        if (size_ok && meets_quality(e.t)) continue;
-        if (stats_.field_points >= cap) {
-            stats_.point_cap_hit = true;
-            break;
-        }
-        if (try_circumcentre(e.t)) continue;
-        if (!size_ok && try_edge_midpoint(e.t)) {
-            ++stats_.size_fallbacks;
-            continue;
-        }
-        if (try_centroid(e.t)) continue;
-        ++stats_.rejected;
+    for (const std::unique_ptr<FieldRefiner>& half : halves) half->hand_over(border);
+    const std::size_t before_border = stats.field_points;
+    border.set_cap(cap);
+    if (log) border.set_log(&logs[2]);
+    border.run_queue();
+    if (log) {
+        log->border_before = border_before;
+        log->in_half = {half_stats[0].field_points, half_stats[1].field_points};
+        log->border_after = stats.field_points - before_border;
+        for (std::vector<TetChange>& part : logs) log->insertions.insert(log->insertions.end(), part.begin(), part.end());
     }
 }
 
 }  // namespace
 
-void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<TetId>* seeds) {
-    Refiner r(c, stats);
-    r.run(seeds);
+void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<TetId>* seeds, FieldPointsLog* log) {
+    if (!seeds) return insert_in_halves(c, stats, log);
+    FieldRefiner r(c, stats);
+    const std::size_t before = stats.field_points;
+    if (log) r.set_log(&log->insertions);
+    r.queue_seeds(*seeds);
+    r.run_queue();
+    if (log) log->border_after = stats.field_points - before;
 }
 
 }  // namespace cbr::refine

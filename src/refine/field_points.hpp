@@ -20,6 +20,8 @@
 // half the local size (no cascades at small input angles).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <vector>
 
 #include "refine/refine_context.hpp"
@@ -27,10 +29,24 @@
 
 namespace cbr::refine {
 
-// Refines every tetrahedron of the bounded regions of c.m; new points are
-// appended to the mesh coordinates (after the existing ones, in insertion
-// order) and to c.size. With `seeds`, only those tetrahedra (the live ones
-// of the bounded regions) and what their refinement creates.
-void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<mesh::TetId>* seeds = nullptr);
+// For tests: the points insert_field_points put in each part of its work
+// (in halves: the border's before the halves, each half's, the border's
+// after them; with seeds, all count as border_after) and each insertion's
+// cavity and star, in that order.
+struct FieldPointsLog {
+    std::size_t border_before = 0;
+    std::array<std::size_t, 2> in_half{};
+    std::size_t border_after = 0;
+    std::vector<TetChange> insertions;
+};
+
+// Refines every tetrahedron of the bounded regions of c.m, in two halves
+// (see field_points.cpp: two threads when c.options.threads allows; the
+// same mesh with any number); new points are appended to the mesh
+// coordinates (after the existing ones) and to c.size. With `seeds`, only
+// those tetrahedra (the live ones of the bounded regions) and what their
+// refinement creates, on one thread, new points in insertion order.
+void insert_field_points(RefineContext& c, RefineStats& stats, const std::vector<mesh::TetId>* seeds = nullptr,
+                         FieldPointsLog* log = nullptr);
 
 }  // namespace cbr::refine

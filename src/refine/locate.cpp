@@ -11,7 +11,7 @@ using mesh::kFaceVertices;
 using mesh::TetId;
 using mesh::VertexId;
 
-Location locate_in_region(const RefineContext& c, TetId start, const double* p) {
+Location locate_in_region(const RefineContext& c, TetId start, const double* p, const HalfClaim* claim) {
     const mesh::TetMesh& m = c.m;
     const std::int32_t region = c.region(start);
     TetId t = start;
@@ -47,6 +47,7 @@ Location locate_in_region(const RefineContext& c, TetId start, const double* p) 
         if (m.is_constrained(t, next)) return {Located::kBlocked, t};
         const TetId n = facet_tet(m.neighbor(t, next));
         if (m.is_ghost(n) || c.region(n) != region) return {Located::kBlocked, t};
+        if (claim && !claim->owns(m, n)) return {Located::kForeign, t};
         t = n;
     }
     return {Located::kLost, t};

@@ -7,6 +7,7 @@
 
 #include "mesh/tet_mesh.hpp"
 #include "refine/refine_context.hpp"
+#include "refine/vertex_halves.hpp"
 
 namespace cbr::refine {
 
@@ -16,6 +17,7 @@ enum class Located {
     kBlocked,  // the walk would cross a constraint face, a region border or the hull
     kOnSurface,  // on a constraint face of `tet` (exact)
     kLost,     // step limit reached (a cycle in a non-Delaunay mesh)
+    kForeign,  // the walk would enter a tetrahedron that is not the claim's (`tet`: the last one that is)
 };
 
 struct Location {
@@ -23,6 +25,10 @@ struct Location {
     mesh::TetId tet = mesh::kNoTet;
 };
 
-Location locate_in_region(const RefineContext& c, mesh::TetId start, const double* p);
+// With `claim`, start is the claim's and the walk never enters a
+// tetrahedron that is not (kForeign): it reads only the claim's
+// tetrahedra and the corners of their neighbours.
+Location locate_in_region(const RefineContext& c, mesh::TetId start, const double* p,
+                          const HalfClaim* claim = nullptr);
 
 }  // namespace cbr::refine

@@ -33,9 +33,13 @@ struct RefineOptions {
     double quality_bound = 1.414;
     // Optimisation passes (each: quality flips, then smoothing); 0 = none.
     int optimisation_passes = 3;
-    // Threads the smoothing sweeps may use (CBR_PARAM_THREADS; the mesh is
-    // the same with any number: vertex_halves.hpp).
+    // Threads the field points, quality flips and smoothing sweeps may use
+    // (CBR_PARAM_THREADS; the mesh is the same with any number:
+    // vertex_halves.hpp).
     int threads = 1;
+    // For tests: the vertex ids each half of the field points gets in its
+    // first round (field_points.cpp; twice as many in each round after).
+    std::size_t field_point_round = 4096;
     // For tests: switch off one part of the optimisation.
     bool flips = true;
     bool smoothing = true;

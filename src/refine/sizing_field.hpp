@@ -35,6 +35,10 @@ public:
     double interior(double value) const { return constant_ ? cap_ : (value < cap_ ? value : cap_); }
     // Appends the value of a new vertex (ids must follow in order).
     void add(double h) { h_.push_back(h); }
+    // For ids taken ahead (the field points in halves): sets the value of
+    // vertex v < size(), and drops the values from id `count` on.
+    void set(mesh::VertexId v, double h) { h_[v] = h; }
+    void truncate(std::size_t count) { h_.resize(count); }
     std::size_t size() const { return h_.size(); }
 
 private:

@@ -5,7 +5,8 @@
 
 namespace cbr::refine {
 
-std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices) {
+std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices,
+                                        MedianPlane* plane) {
     std::vector<std::uint8_t> half(m.vertex_count(), kNoHalf);
     if (vertices.empty()) return half;
     // The longest side of the vertices' bounding box.
@@ -29,6 +30,7 @@ std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vecto
     const auto middle = by_coordinate.begin() + static_cast<std::ptrdiff_t>(by_coordinate.size() / 2);
     std::nth_element(by_coordinate.begin(), middle, by_coordinate.end(), below);
     for (auto it = by_coordinate.begin(); it != by_coordinate.end(); ++it) half[*it] = it < middle ? 0 : 1;
+    if (plane) *plane = {axis, m.point(*middle)[axis]};
     return half;
 }
 

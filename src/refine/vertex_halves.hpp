@@ -31,7 +31,29 @@ struct VertexHalves {
 // the median of their coordinate along the longest side of their bounding
 // box, ties by id), kNoHalf for the other vertices.
 inline constexpr std::uint8_t kNoHalf = 2;
-std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices);
+// `plane`, when given: the axis and the median coordinate (that of the
+// first vertex of half 1), for labelling points added later.
+struct MedianPlane {
+    int axis = 0;
+    double at = 0;
+    std::uint8_t half_of(const double* p) const { return p[axis] < at ? 0 : 1; }
+};
+std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices,
+                                        MedianPlane* plane = nullptr);
+
+// A half's claim on the tetrahedra when the vertices carry half labels
+// (the field points in halves, field_points.cpp): a tetrahedron is the
+// half's when its four corners are labelled with it (never a ghost).
+struct HalfClaim {
+    const std::vector<std::uint8_t>* label;  // per vertex id
+    std::uint8_t half;
+    bool owns(const mesh::TetMesh& m, mesh::TetId t) const {
+        const mesh::VertexId* v = m.vertices(t);
+        if (v[3] == mesh::kGhostVertex) return false;
+        const std::vector<std::uint8_t>& l = *label;
+        return l[v[0]] == half && l[v[1]] == half && l[v[2]] == half && l[v[3]] == half;
+    }
+};
 
 // Splits `moving` (increasing ids: the vertices a sweep may move; no other
 // vertex moves during it) as above.
