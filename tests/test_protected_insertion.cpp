@@ -17,6 +17,7 @@
 #include "geom/predicates.hpp"
 #include "mesh/ball_shell.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/slot_pool.hpp"
 #include "mesh/surgery.hpp"
 #include "recover/protected_insertion.hpp"
 #include "mesh_test_util.hpp"
@@ -436,6 +437,46 @@ TEST_CASE("a point exactly on a constraint face is refused, mesh bit-identical")
     CHECK_FALSE(insert_protected(m, p2, t0).ok);
     m.truncate_vertices(m.vertex_count() - 2);
     CHECK(snapshot(m) == before);
+}
+
+TEST_CASE("a star the thread's slot pool cannot hold is refused, mesh bit-identical") {
+    // On a thread with a SlotPool (mesh/slot_pool.hpp) new slots come from
+    // the pool alone, and an empty pool throws: the insertion checks first
+    // that the star fits in its cavity's slots and the pool's.
+    const auto base = cbr::test::random_points(200, 41);
+    const double q[3] = {0.41, 0.52, 0.47};
+    std::array<cbr::delaunay::Delaunay, 3> d;
+    std::array<std::size_t, 3> star{}, cavity{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        REQUIRE(d[k].insert_points(base.data(), 200).ok);
+        TetMesh& m = d[k].mesh_for_update();
+        const VertexId p = add_point(m, q);
+        const TetId start = locate(m, m.point(p));
+        if (k == 0) {  // no pool: the star's and the cavity's sizes
+            const ProtectedInsertResult res = insert_protected(m, p, start);
+            REQUIRE(res.ok);
+            star[k] = res.created.size();
+            cavity[k] = res.cavity.size();
+            REQUIRE(star[k] > cavity[k]);
+            continue;
+        }
+        // One slot short, then just enough.
+        SlotPool pool(m, star[0] - cavity[0] - (k == 1 ? 1 : 0));
+        const SlotPool::Use use(pool);
+        const Snapshot before = snapshot(m);
+        const ProtectedInsertResult res = insert_protected(m, p, start);
+        if (k == 1) {
+            CHECK_FALSE(res.ok);
+            CHECK(res.why == "the thread's slot pool cannot hold the star");
+            CHECK(snapshot(m) == before);
+        } else {
+            REQUIRE(res.ok);
+            CHECK(res.created.size() == star[0]);
+            CHECK(pool.size() == 0);
+            check_after(m, p, res, {});
+        }
+    }
+    CHECK(coordinate_tets(d[2].mesh()) == coordinate_tets(d[0].mesh()));
 }
 
 TEST_CASE("explicit initial cavity: the half of a ball, corrected") {

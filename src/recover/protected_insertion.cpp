@@ -518,10 +518,6 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     res.removed = c.removed();
     res.added = c.added();
     if (!corrected) return res;
-    // The star of p: each boundary face coned to p, i.e. its cavity
-    // tetrahedron with p in place of the vertex opposite the face (same
-    // side, so the orientation is kept), listed by tetrahedron (sorted
-    // ids) then face.
     // On a thread with a slot pool (mesh/slot_pool.hpp), the star must fit
     // in the cavity's slots and the pool's: an empty pool throws halfway
     // through a replacement.
@@ -531,6 +527,10 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
             return res;
         }
     }
+    // The star of p: each boundary face coned to p, i.e. its cavity
+    // tetrahedron with p in place of the vertex opposite the face (same
+    // side, so the orientation is kept), listed by tetrahedron (sorted
+    // ids) then face.
     res.cavity.clear();
     for (TetId t : c.tets()) res.cavity.push_back({m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2), m.vertex(t, 3)});
     const mesh::ReplaceResult r = scratch_->star.replace(m, c.tets(), p, &res.created);
