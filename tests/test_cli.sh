@@ -226,7 +226,7 @@ run_local_outputs() {
     # Table II is measured; the .vtu, which holds the quality, after it).
     expect 0 "" recover --help && report_has "--threads N      threads for the passes that only read the whole mesh"
     expect 0 "" mesh --help && report_has "--threads N      threads for the passes that only read the whole mesh"
-    report_has "and for the smoothing and the" && report_has "quality flips of the refinement"
+    report_has "and for the field points, the" && report_has "smoothing and the quality flips of the refinement"
     expect 1 "--threads needs a number" recover "$tmp/cube.off" -o "$tmp/c.mesh" --threads
     expect 1 "--threads needs a whole number within \[0, 256\], not '-1'" recover "$tmp/cube.off" -o "$tmp/c.mesh" --threads -1
     expect 1 "--threads needs a whole number within \[0, 256\], not '2.5'" mesh "$tmp/cube.off" -o "$tmp/c.mesh" --threads 2.5
