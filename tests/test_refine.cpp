@@ -1599,7 +1599,7 @@ TEST_CASE("refine: the field points in halves stay in their half: the same with 
     // halves do most of the insertions. The new points' ids have no gap and
     // increase along each part of the log; the mesh stays valid. Rounds of 16
     // ids per half, then 32, ... (4096 by default) take the halves through
-    // seven rounds: their ids close up after each.
+    // six rounds: their ids close up after each.
     std::array<Recovered, 2> r;
     std::array<cbr::refine::FieldPointsLog, 2> log;
     std::array<cbr::refine::RefineStats, 2> stats;
