@@ -309,6 +309,7 @@ std::size_t FieldRefiner::point_cap() const {
 }
 
 bool FieldRefiner::refine_entry(const Entry& e) {
+    foreign_ = starved_ = false;
     const bool size_ok = c_.tet_within_size(e.t);
     if (size_ok && meets_quality(e.t)) return false;
     if (try_circumcentre(e.t)) return true;
@@ -360,7 +361,6 @@ bool FieldRefiner::run_round(HalfRound& round) {
             stats_.point_cap_hit = true;
             break;
         }
-        foreign_ = starved_ = false;
         refine_entry(e);
         if (starved_) {  // nothing changed: the entry waits for the next round
             left = true;
