@@ -38,7 +38,8 @@ struct RefineOptions {
     // vertex_halves.hpp).
     int threads = 1;
     // For tests: the vertex ids each half of the field points gets in its
-    // first round (field_points.cpp; twice as many in each round after).
+    // first round (field_points.cpp; twice as many in each round after, up
+    // to 16384).
     std::size_t field_point_round = 4096;
     // For tests: switch off one part of the optimisation.
     bool flips = true;
