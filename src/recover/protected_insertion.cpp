@@ -100,14 +100,9 @@ public:
     std::size_t size() const { return count_; }
     std::size_t removed() const { return removed_; }
     std::size_t added() const { return added_; }
-    // Faces between a member and a tetrahedron outside: the star's size.
-    std::size_t boundary_face_count() const {
-        std::size_t count = 0;
-        for (TetId t : s_.members)
-            if (in(t))
-                for (int f = 0; f < 4; ++f) count += in(across(t, f)) ? 0 : 1;
-        return count;
-    }
+    // The faces between a member and a tetrahedron outside (the star's
+    // faces), in the order of the members' ids.
+    const std::vector<CavityFace>& boundary();
 
 private:
     // A slot's marks (s_.tet_marks), for the current insertion.
@@ -127,7 +122,6 @@ private:
     bool nearly_flat(TetId t, int f) const;
     bool in_conflict(TetId t) const;
     int face_sign(TetId t, int f) const;
-    const std::vector<CavityFace>& boundary();
     void note_new_boundary_of_added(TetId n);
     void note_new_boundary_of_removed(TetId t);
     void remove(TetId t);
@@ -522,7 +516,7 @@ const ProtectedInsertResult& ProtectedInserter::run(TetMesh& m, VertexId p, TetI
     // in the cavity's slots and the pool's: an empty pool throws halfway
     // through a replacement.
     if (const mesh::SlotPool* pool = mesh::SlotPool::in_use(m)) {
-        if (c.boundary_face_count() > c.size() + pool->size()) {
+        if (c.boundary().size() > c.size() + pool->size()) {
             res.why = "the thread's slot pool cannot hold the star";
             return res;
         }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mesh/chunks.hpp"
+#include "mesh/vertex_compaction.hpp"
 #include "mesh/slot_pool.hpp"
 #include "refine/field_refiner.hpp"
 #include "refine/vertex_halves.hpp"
@@ -42,8 +43,8 @@ using mesh::VertexId;
 // Vertex ids: each round gives each half a range of ids taken ahead (the
 // mesh's coordinates, the sizing field and the labels grown once, so no
 // array grows under a thread) and a pool of slots; a half stops when its
-// range or pool runs short, and when both have stopped, the ids half 1 used
-// close up after half 0's. So the points are numbered round by round, half
+// range or pool runs short, and when both have stopped, the ids used close
+// up (half 1's after half 0's) and the unused ones go. So the points are numbered round by round, half
 // 0's before half 1's, whatever the number of threads.
 constexpr std::size_t kSlotsPerId = 8;  // a point adds about 6.3 tetrahedra net
 // The ids of a round double up to this many per half: the pools' slots that
@@ -53,31 +54,24 @@ constexpr std::size_t kSlotsPerId = 8;  // a point adds about 6.3 tetrahedra net
 // 364 with the field points on one refiner).
 constexpr std::size_t kMostRoundIds = 16384;
 
-// Moves the ids [from, from + count) of the last round's second half down to
-// `to`, after the first half's, and drops the ids beyond.
-void close_up_ids(RefineContext& c, std::vector<std::uint8_t>& label, FieldRefiner& second, VertexId from, VertexId to,
-                  std::size_t count) {
-    mesh::TetMesh& m = c.m;
-    const VertexId end = static_cast<VertexId>(from + count);
-    const auto renumber = [&](VertexId v) { return v >= from && v < end ? v - (from - to) : v; };
-    if (from != to && count > 0) {
-        for (std::size_t i = 0; i < count; ++i) {
-            m.set_point(static_cast<VertexId>(to + i), m.point(static_cast<VertexId>(from + i)));
-            c.size.set(static_cast<VertexId>(to + i), c.size.at(static_cast<VertexId>(from + i)));
-            label[to + i] = label[from + i];
-        }
-        for (TetId t = 0; t < m.slot_count(); ++t) {
-            if (m.is_free(t)) continue;
-            for (int i = 0; i < 4; ++i) {
-                const VertexId v = m.vertex(t, i);
-                if (v >= from && v < end) m.set_vertex(t, i, renumber(v));
-            }
-        }
-        second.renumber_queued(renumber);
+// After a round: the ids taken ahead and left unused go, those used close
+// up in order (half 0's, then half 1's) through mesh::compact_vertices_from,
+// and the sizing field, the labels and the halves' queues and logs follow.
+void close_up_ids(RefineContext& c, std::vector<std::uint8_t>& label,
+                  std::array<std::unique_ptr<FieldRefiner>, 2>& halves, VertexId first) {
+    std::vector<VertexId> none, kept;
+    mesh::compact_vertices_from(c.m, first, none, &kept);  // kept[i]: the old id of first + i
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+        c.size.set(static_cast<VertexId>(first + i), c.size.at(kept[i]));
+        label[first + i] = label[kept[i]];
     }
-    m.truncate_vertices(to + count);
-    c.size.truncate(to + count);
-    label.resize(to + count);
+    c.size.truncate(c.m.vertex_count());
+    label.resize(c.m.vertex_count());
+    const auto renumber = [&](VertexId v) {
+        if (v < first) return v;
+        return static_cast<VertexId>(first + (std::lower_bound(kept.begin(), kept.end(), v) - kept.begin()));
+    };
+    for (std::unique_ptr<FieldRefiner>& half : halves) half->renumber_queued(renumber);
 }
 
 void insert_in_halves(RefineContext& c, RefineStats& stats, FieldPointsLog* log) {
@@ -118,8 +112,8 @@ void insert_in_halves(RefineContext& c, RefineStats& stats, FieldPointsLog* log)
         std::array<FieldRefiner::HalfRound, 2> rounds;
         std::array<std::unique_ptr<mesh::SlotPool>, 2> pools;
         for (std::uint8_t h = 0; h < 2; ++h) {
-            rounds[h].claim = {&label, h};
             rounds[h].label = &label;
+            rounds[h].half = h;
             rounds[h].next_id = static_cast<VertexId>(first + h * ids);
             rounds[h].end_id = static_cast<VertexId>(first + (h + 1) * ids);
             rounds[h].cap = h == 0 ? half_cap / 2 : half_cap - half_cap / 2;
@@ -132,15 +126,12 @@ void insert_in_halves(RefineContext& c, RefineStats& stats, FieldPointsLog* log)
             for (std::size_t h = begin; h < end; ++h) {
                 if (!left[h]) continue;
                 const mesh::SlotPool::Use use(*pools[h]);
-                left[h] = halves[h]->run_round(rounds[h]);
+                left[h] = halves[h]->run_round(&rounds[h]);
             }
         });
         for (std::unique_ptr<mesh::SlotPool>& pool : pools) pool.reset();  // the slots left back to the free list
         for (std::unique_ptr<FieldRefiner>& half : halves) half->drop_stale();
-        const std::size_t used0 = rounds[0].next_id - first;
-        const std::size_t used1 = rounds[1].next_id - (first + ids);
-        close_up_ids(c, label, *halves[1], static_cast<VertexId>(first + ids), static_cast<VertexId>(first + used0),
-                     used1);
+        close_up_ids(c, label, halves, static_cast<VertexId>(first));
         if (half_stats[0].point_cap_hit || half_stats[1].point_cap_hit) break;
     }
     for (const RefineStats& h : half_stats) {

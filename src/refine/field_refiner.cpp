@@ -214,13 +214,13 @@ bool FieldRefiner::insert_in_half(const Point& p, TetId start, const Probe& prob
     const VertexId id = round.next_id;
     m_.set_point(id, p.data());
     const recover::ProtectedInsertResult& res = inserter_.insert_in_cavity(
-        m_, id, start, probe_cavity_, [this](TetId t, int) { return !half_->claim.owns(m_, t); });
+        m_, id, start, probe_cavity_, [this](TetId t, int) { return !claimed(t); });
     if (!res.ok) {
         foreign_ = true;
         return false;
     }
     ++round.next_id;
-    (*round.label)[id] = round.claim.half;
+    (*round.label)[id] = round.half;
     c_.size.set(id, h);
     record(res, region);
     return true;
@@ -329,27 +329,15 @@ void FieldRefiner::queue_seeds(const std::vector<TetId>& seeds) {
         if (t < m_.slot_count() && !m_.is_free(t) && c_.in_domain(t)) push(t);
 }
 
-void FieldRefiner::run_queue() {
-    if (cap_ == kNoCap) cap_ = point_cap();
-    while (!queue_.empty()) {
-        const Entry e = queue_.front();
-        queue_.pop_front();
-        if (!current(e)) continue;
-        if (stats_.field_points >= cap_ && !(c_.tet_within_size(e.t) && meets_quality(e.t))) {
-            stats_.point_cap_hit = true;
-            break;
-        }
-        refine_entry(e);
-    }
-}
-
 void FieldRefiner::queue_claimed(const HalfClaim& claim) {
     for (TetId t = 0; t < m_.slot_count(); ++t)
         if (c_.in_domain(t) && claim.owns(m_, t)) push(t);
 }
 
-bool FieldRefiner::run_round(HalfRound& round) {
-    half_ = &round;
+bool FieldRefiner::run_round(HalfRound* round) {
+    half_ = round;
+    if (!round && cap_ == kNoCap) cap_ = point_cap();
+    const std::size_t cap = round ? round->cap : cap_;
     bool left = false;
     while (!queue_.empty()) {
         const Entry e = queue_.front();
@@ -357,17 +345,17 @@ bool FieldRefiner::run_round(HalfRound& round) {
             queue_.pop_front();
             continue;
         }
-        if (stats_.field_points >= round.cap && !(c_.tet_within_size(e.t) && meets_quality(e.t))) {
+        if (stats_.field_points >= cap && !(c_.tet_within_size(e.t) && meets_quality(e.t))) {
             stats_.point_cap_hit = true;
             break;
         }
         refine_entry(e);
-        if (starved_) {  // nothing changed: the entry waits for the next round
+        if (starved_) {  // half mode, nothing changed: the entry waits for the next round
             left = true;
             break;
         }
         queue_.pop_front();
-        if (foreign_) deferred_.push_back(e);
+        if (foreign_) deferred_.push_back(e);  // half mode
     }
     half_ = nullptr;
     return left;

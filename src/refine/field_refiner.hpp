@@ -38,15 +38,17 @@ public:
         std::array<mesh::VertexId, 4> v;
     };
 
-    // What one half of the mesh works with in a round of the halves: its
-    // claim on the tetrahedra, the vertex ids taken ahead for its points
-    // ([next_id, end_id)), its slot pool and its share of the point cap.
+    // What one half of the mesh works with in a round of the halves: the
+    // vertices' half labels (written for its new points) and its half, the
+    // vertex ids taken ahead for its points ([next_id, end_id)), its slot
+    // pool and its share of the point cap.
     struct HalfRound {
-        HalfClaim claim;
-        std::vector<std::uint8_t>* label;  // the claim's labels, written for the half's new points
+        std::vector<std::uint8_t>* label = nullptr;
+        std::uint8_t half = 0;
         mesh::VertexId next_id = 0, end_id = 0;
         const mesh::SlotPool* pool = nullptr;
         std::size_t cap = 0;
+        HalfClaim claim() const { return {label, half}; }
     };
 
     FieldRefiner(RefineContext& c, RefineStats& stats) : c_(c), m_(c.m), stats_(stats) {}
@@ -54,17 +56,18 @@ public:
     void queue_seeds(const std::vector<mesh::TetId>& seeds);
     // Refines until the queue is empty or the point cap (set_cap, else
     // point_cap()) is reached.
-    void run_queue();
+    void run_queue() { run_round(nullptr); }
     // Half mode: queues the claim's tetrahedra in slot order.
     void queue_claimed(const HalfClaim& claim);
-    // Half mode: refines until the queue is empty, the round's ids or
-    // slots run short or the cap is reached; an entry whose refinement
-    // would read or change a tetrahedron not the half's is deferred (see
-    // hand_over). Returns whether entries are left for a next round.
-    bool run_round(HalfRound& round);
+    // Half mode (`round` given): refines until the queue is empty, the
+    // round's ids or slots run short or the round's cap is reached; an entry
+    // whose refinement would read or change a tetrahedron not the half's is
+    // deferred (see hand_over). Returns whether entries are left for a next
+    // round.
+    bool run_round(HalfRound* round);
     void queue_tet(mesh::TetId t) { push(t); }
-    // Half mode: renumbers the vertex ids in the queue and the deferred
-    // entries by `renumber`.
+    // Half mode: renumbers the vertex ids in the queue, the deferred entries
+    // and the log by `renumber`.
     template <typename Renumber>
     void renumber_queued(Renumber renumber) {
         for (std::deque<Entry>* list : {&queue_, &deferred_})
@@ -111,7 +114,7 @@ private:
     // it is (refused, or left for later in half mode: foreign_, starved_).
     bool refine_entry(const Entry& e);
     // Half mode: whether t is the half's (always true otherwise).
-    bool claimed(mesh::TetId t) const { return half_ == nullptr || half_->claim.owns(m_, t); }
+    bool claimed(mesh::TetId t) const { return half_ == nullptr || half_->claim().owns(m_, t); }
     bool current(const Entry& e) const {
         if (m_.is_free(e.t) || !c_.in_domain(e.t)) return false;
         const mesh::VertexId* v = m_.vertices(e.t);
@@ -149,7 +152,8 @@ private:
     bool try_circumcentre(mesh::TetId t);
     bool try_edge_midpoint(mesh::TetId t);
     Location locate(mesh::TetId start, const double* p) {
-        const Location loc = locate_in_region(c_, start, p, half_ ? &half_->claim : nullptr);
+        const HalfClaim claim = half_ ? half_->claim() : HalfClaim{};
+        const Location loc = locate_in_region(c_, start, p, half_ ? &claim : nullptr);
         if (loc.where == Located::kForeign) foreign_ = true;
         return loc;
     }

@@ -45,8 +45,8 @@ std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vecto
 // (the field points in halves, field_points.cpp): a tetrahedron is the
 // half's when its four corners are labelled with it (never a ghost).
 struct HalfClaim {
-    const std::vector<std::uint8_t>* label;  // per vertex id
-    std::uint8_t half;
+    const std::vector<std::uint8_t>* label = nullptr;  // per vertex id
+    std::uint8_t half = 0;
     bool owns(const mesh::TetMesh& m, mesh::TetId t) const {
         const mesh::VertexId* v = m.vertices(t);
         if (v[3] == mesh::kGhostVertex) return false;
