@@ -69,6 +69,7 @@ private:
     mesh::TetMesh& m_;
     std::vector<TetId> ball_;
     std::vector<VertexId> neighbours_;
+    std::vector<double> link_lengths_;  // squared length of v's edge to each of neighbours_ before the move
     std::vector<double> qualities_;  // radius ratios of ball_ at the vertex's position, in ball_'s order
     std::vector<Point> candidates_;  // smooth(): the positions tried (kept: one allocation, not four per ball)
     // rate_angles: the ball tetrahedra (indices in ball_) that held the
@@ -155,6 +156,8 @@ bool Smoother::collect_link(VertexId v) {
         }
     }
     std::sort(neighbours_.begin(), neighbours_.end());
+    link_lengths_.clear();
+    for (VertexId u : neighbours_) link_lengths_.push_back(squared_distance(m_.point(u), m_.point(v)));
     return true;
 }
 
@@ -169,10 +172,17 @@ std::size_t Smoother::oriented_prefix() const {
     return n;
 }
 
-// Every edge from v to its link within the size bound.
+// Every edge from v to its link within the size bound, or at most as long
+// as it was where v stood when its link was collected: an edge that is over
+// the bound already (next to a short input edge, the refinement leaves some)
+// must not freeze v, only not grow. thingiverse-feeder-body: a field point
+// at a 3.8e-4 input edge, whose ball's smallest dihedral angle is
+// 2.9e-4 deg, had an edge over the bound, and no move was tried.
 bool Smoother::link_within_size(VertexId v) const {
-    for (VertexId u : neighbours_)
-        if (!c_.edge_within_size(u, v)) return false;
+    for (std::size_t i = 0; i < neighbours_.size(); ++i) {
+        const VertexId u = neighbours_[i];
+        if (!c_.edge_within_size(u, v) && squared_distance(m_.point(u), m_.point(v)) > link_lengths_[i]) return false;
+    }
     return true;
 }
 

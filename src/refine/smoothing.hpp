@@ -4,7 +4,8 @@
 // points and recovery's Steiner points), only inside the bounded regions,
 // and a move is kept only when every tetrahedron of the vertex's ball stays
 // positively oriented (exact orient3d: the vertex stays strictly inside its
-// ball, so it never reaches the surface), no edge breaks the size bound,
+// ball, so it never reaches the surface), no edge of the vertex leaves the
+// size bound (one already over it may stay over, no longer than it was),
 // and the ball gets better: its smallest radius ratio grows when it has a
 // bad tetrahedron (below 0.15), else its mean grows while its smallest
 // stays at least min(old smallest, 0.3) (smoothing.cpp). Otherwise the
