@@ -62,7 +62,7 @@ private:
     double sum_quality(double floor, double to_beat) const;
     bool odt_point(Point& out) const;
     std::size_t oriented_prefix() const;
-    bool link_within_size(VertexId v) const;
+    bool link_keeps_size(VertexId v) const;
     bool ball_valid(VertexId v) const;
 
     RefineContext& c_;
@@ -173,12 +173,12 @@ std::size_t Smoother::oriented_prefix() const {
 }
 
 // Every edge from v to its link within the size bound, or at most as long
-// as it was where v stood when its link was collected: an edge that is over
-// the bound already (next to a short input edge, the refinement leaves some)
-// must not freeze v, only not grow. thingiverse-feeder-body: a field point
+// as it was where v stood when its link was collected (collect_link): an
+// edge that is over the bound already (next to a short input edge, the
+// refinement leaves some) must not freeze v, only not grow. thingiverse-feeder-body: a field point
 // at a 3.8e-4 input edge, whose ball's smallest dihedral angle is
 // 2.9e-4 deg, had an edge over the bound, and no move was tried.
-bool Smoother::link_within_size(VertexId v) const {
+bool Smoother::link_keeps_size(VertexId v) const {
     for (std::size_t i = 0; i < neighbours_.size(); ++i) {
         const VertexId u = neighbours_[i];
         if (!c_.edge_within_size(u, v) && squared_distance(m_.point(u), m_.point(v)) > link_lengths_[i]) return false;
@@ -186,7 +186,7 @@ bool Smoother::link_within_size(VertexId v) const {
     return true;
 }
 
-bool Smoother::ball_valid(VertexId v) const { return oriented_prefix() == ball_.size() && link_within_size(v); }
+bool Smoother::ball_valid(VertexId v) const { return oriented_prefix() == ball_.size() && link_keeps_size(v); }
 
 // Candidate positions: the centroid of the ball's other vertices (Laplacian
 // smoothing, §6 "local constrained Laplacian smoothing"), half and a quarter
@@ -400,7 +400,7 @@ bool Smoother::raise_smallest_angle(VertexId v, TetId start, double below_degree
     const double sum_floor = kAngleMeanKept * old.sum_q;
     const auto acceptable = [&](const BallAngles& r, double to_beat) {
         // A rating above to_beat was a full one: the ball is oriented.
-        return r.smallest > to_beat && r.under <= old.under && r.sum_q >= sum_floor && link_within_size(v);
+        return r.smallest > to_beat && r.under <= old.under && r.sum_q >= sum_floor && link_keeps_size(v);
     };
     double step = 0;
     for (VertexId u : neighbours_) step += std::sqrt(squared_distance(m_.point(u), here.data()));
