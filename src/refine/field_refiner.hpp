@@ -106,7 +106,7 @@ public:
 
 private:
     void push(mesh::TetId t) {
-        if (border_only_ && (HalfClaim{border_only_, 0}.owns(m_, t) || HalfClaim{border_only_, 1}.owns(m_, t))) return;
+        if (border_only_ && common_half(*border_only_, m_, t) != kNoHalf) return;
         const mesh::VertexId* v = m_.vertices(t);
         queue_.push_back({t, {v[0], v[1], v[2], v[3]}});
     }

@@ -451,7 +451,7 @@ std::size_t sweep(RefineContext& c, Flipper& flipper, Wanted wanted) {
 // face of its own (three). A tetrahedron the other half writes has at
 // least three corners there, so at most one here: neither half reads
 // what the other writes.
-constexpr std::uint8_t kBorder = 2;
+constexpr std::uint8_t kBorder = kNoHalf;
 // The most slots one flip takes beyond those it frees: an edge removal
 // turns a shell of n <= kMaxShell tetrahedra into 2 (n - 2).
 constexpr std::size_t kMostNewSlots = 2 * (kMaxShell - 2) - kMaxShell;
@@ -469,9 +469,8 @@ std::vector<std::uint8_t> tet_halves(const mesh::TetMesh& m, std::array<std::siz
     owned = {0, 0};
     for (TetId t = 0; t < m.slot_count(); ++t) {
         if (m.is_free(t) || m.is_ghost(t)) continue;
-        const VertexId* w = m.vertices(t);
-        const std::uint8_t h = half[w[0]];
-        if (half[w[1]] != h || half[w[2]] != h || half[w[3]] != h) continue;
+        const std::uint8_t h = common_half(half, m, t);
+        if (h == kNoHalf) continue;
         owner[t] = h;
         ++owned[h];
     }

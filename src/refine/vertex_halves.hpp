@@ -41,18 +41,23 @@ struct MedianPlane {
 std::vector<std::uint8_t> median_halves(const mesh::TetMesh& m, const std::vector<mesh::VertexId>& vertices,
                                         MedianPlane* plane = nullptr);
 
-// A half's claim on the tetrahedra when the vertices carry half labels
-// (the field points in halves, field_points.cpp): a tetrahedron is the
-// half's when its four corners are labelled with it (never a ghost).
+// The half of tetrahedron t when the vertices carry half labels: the label
+// of its four corners when they all have the same, else (and for a ghost)
+// kNoHalf. The one rule by which the quality flips (quality_flips.cpp) and
+// the field points (field_points.cpp) give tetrahedra to halves.
+inline std::uint8_t common_half(const std::vector<std::uint8_t>& label, const mesh::TetMesh& m, mesh::TetId t) {
+    const mesh::VertexId* v = m.vertices(t);
+    if (v[3] == mesh::kGhostVertex) return kNoHalf;
+    const std::uint8_t h = label[v[0]];
+    return label[v[1]] == h && label[v[2]] == h && label[v[3]] == h ? h : kNoHalf;
+}
+
+// A half's claim on the tetrahedra (the field points in halves,
+// field_points.cpp): those whose common_half is `half` (0 or 1).
 struct HalfClaim {
     const std::vector<std::uint8_t>* label = nullptr;  // per vertex id
     std::uint8_t half = 0;
-    bool owns(const mesh::TetMesh& m, mesh::TetId t) const {
-        const mesh::VertexId* v = m.vertices(t);
-        if (v[3] == mesh::kGhostVertex) return false;
-        const std::vector<std::uint8_t>& l = *label;
-        return l[v[0]] == half && l[v[1]] == half && l[v[2]] == half && l[v[3]] == half;
-    }
+    bool owns(const mesh::TetMesh& m, mesh::TetId t) const { return common_half(*label, m, t) == half; }
 };
 
 // Splits `moving` (increasing ids: the vertices a sweep may move; no other
