@@ -172,12 +172,12 @@ std::size_t Smoother::oriented_prefix() const {
     return n;
 }
 
-// Every edge from v to its link within the size bound, or at most as long
-// as it was where v stood when its link was collected (collect_link): an
-// edge that is over the bound already (next to a short input edge, the
-// refinement leaves some) must not freeze v, only not grow. thingiverse-feeder-body: a field point
-// at a 3.8e-4 input edge, whose ball's smallest dihedral angle is
-// 2.9e-4 deg, had an edge over the bound, and no move was tried.
+// Every edge from v to its link within the size bound, or at most as long as
+// it was where v stood when its link was collected (collect_link): an edge
+// over the bound already (the refinement leaves some next to short input
+// edges) must not freeze v, only not grow. thingiverse-feeder-body: a field
+// point at a 3.8e-4 input edge, its ball's smallest dihedral angle 2.9e-4
+// deg, had an edge over the bound, and no move of it was ever kept.
 bool Smoother::link_keeps_size(VertexId v) const {
     for (std::size_t i = 0; i < neighbours_.size(); ++i) {
         const VertexId u = neighbours_[i];
