@@ -44,8 +44,9 @@ using mesh::VertexId;
 // mesh's coordinates, the sizing field and the labels grown once, so no
 // array grows under a thread) and a pool of slots; a half stops when its
 // range or pool runs short, and when both have stopped, the ids used close
-// up (half 1's after half 0's) and the unused ones go. So the points are numbered round by round, half
-// 0's before half 1's, whatever the number of threads.
+// up (half 1's after half 0's) and the unused ones go. So the points are
+// numbered round by round, half 0's before half 1's, whatever the number of
+// threads.
 constexpr std::size_t kSlotsPerId = 8;  // a point adds about 6.3 tetrahedra net
 // The ids of a round double up to this many per half: the pools' slots that
 // a round leaves unused stay in the mesh until the renumbering after the

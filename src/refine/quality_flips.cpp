@@ -176,11 +176,8 @@ private:
     // floor ends their search early. The chords are new edges: the size
     // bound applies to them (the ring's sides are edges already, whatever
     // their length), but for the exception of chord_limit2.
-    mesh::RingObjective objective_{oriented_radius_ratio, 0, [this](VertexId a, VertexId b) {
-                                       return c_.edge_within_size(a, b) ||
-                                              (chord_limit2_ >= 0 &&
-                                               squared_distance(m_.point(a), m_.point(b)) <= chord_limit2_);
-                                   }};
+    mesh::RingObjective objective_{oriented_radius_ratio, 0,
+                                   [this](VertexId a, VertexId b) { return c_.edge_within_size(a, b, chord_limit2_); }};
     // The squared length up to which a chord may exceed the size bound in
     // the next ring triangulation (-1: none may).
     double chord_limit2_ = -1;

@@ -105,6 +105,10 @@ bool RefineContext::edge_within_size(mesh::VertexId a, mesh::VertexId b) const {
     return is_surface_edge(a, b);
 }
 
+bool RefineContext::edge_within_size(mesh::VertexId a, mesh::VertexId b, double limit2) const {
+    return edge_within_size(a, b) || squared_distance(m.point(a), m.point(b)) <= limit2;
+}
+
 bool RefineContext::tet_within_size(mesh::TetId t) const {
     const mesh::VertexId* v = m.vertices(t);
     for (int i = 0; i < 4; ++i)

@@ -64,6 +64,11 @@ public:
     // The size bound (refine_options.hpp, kEdgeFactor): false when uv is a
     // non-surface edge longer than kEdgeFactor * edge_size(u, v).
     bool edge_within_size(mesh::VertexId a, mesh::VertexId b) const;
+    // The size bound with an allowance: uv within the bound, or at most
+    // sqrt(limit2) long. A step that replaces or moves edges may keep one
+    // over the bound if it does not grow past what was there: the chords
+    // of the flips for the angle, the cones from a vertex, the smoothing.
+    bool edge_within_size(mesh::VertexId a, mesh::VertexId b, double limit2) const;
     // Every edge of t within the size bound.
     bool tet_within_size(mesh::TetId t) const;
 

@@ -179,10 +179,8 @@ std::size_t Smoother::oriented_prefix() const {
 // point at a 3.8e-4 input edge, its ball's smallest dihedral angle 2.9e-4
 // deg, had an edge over the bound, and no move of it was ever kept.
 bool Smoother::link_keeps_size(VertexId v) const {
-    for (std::size_t i = 0; i < neighbours_.size(); ++i) {
-        const VertexId u = neighbours_[i];
-        if (!c_.edge_within_size(u, v) && squared_distance(m_.point(u), m_.point(v)) > link_lengths_[i]) return false;
-    }
+    for (std::size_t i = 0; i < neighbours_.size(); ++i)
+        if (!c_.edge_within_size(neighbours_[i], v, link_lengths_[i])) return false;
     return true;
 }
 

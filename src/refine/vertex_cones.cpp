@@ -201,8 +201,7 @@ bool ConeMaker::rate_cone(VertexId apex, const Rating& cavity, Rating& cone) con
     for (const Face& f : boundary_) {
         if (f.v[0] == apex || f.v[1] == apex || f.v[2] == apex) continue;
         for (VertexId w : f.v)
-            if (!c_.edge_within_size(apex, w) && squared_distance(p, m_.point(w)) > cavity.longest_over_bound2)
-                return false;
+            if (!c_.edge_within_size(apex, w, cavity.longest_over_bound2)) return false;
     }
     return true;
 }
