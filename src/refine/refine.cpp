@@ -31,15 +31,11 @@ constexpr double kSliverThreshold = 0.1;
 // with movable corners too, 649 more, for the same minima.
 constexpr double kAngleRescueBelow = 1.0;
 // Passes beyond options.optimisation_passes while the Steiner points still
-// have bad tetrahedra and the last pass suppressed or relocated one. They
-// are for the Steiner points: their sliver points go only where a
-// tetrahedron has a Steiner corner. Elsewhere the sliver points of these
-// late passes multiplied on thin walls (feeder body: 123,119 -> 153,983
-// tetrahedra in its last three passes, more of them under q = 0.1); with
-// the points kept at the Steiner points, on the 37 shared surfaces: 1,172
-// fewer tetrahedra under q = 0.1, average q 0.7710 -> 0.7725, 11 more
-// bad tetrahedra at Steiner points (on 72 turned copies: 187 fewer under
-// 0.1, 2 fewer bad at Steiner points).
+// have bad tetrahedra and the last pass suppressed, relocated or coned one
+// away. They are for the Steiner points, so they insert no sliver points:
+// the sliver points of these late passes multiplied on thin walls (feeder
+// body: 123,119 -> 153,983 tetrahedra in its last three passes, more of
+// them under q = 0.1).
 constexpr int kExtraSteinerPasses = 5;
 
 RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
@@ -74,8 +70,7 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
         const std::size_t relocated =
             options.steiner_relocation ? relocate_steiner_points(c, steiner, kSliverThreshold) : 0;
         // An extra pass: the cones from a vertex too (vertex_cones.hpp),
-        // whose suppressions the next pass's flips, smoothing and points
-        // build on; then sliver points only at the Steiner points.
+        // whose suppressions the next pass's flips and smoothing build on.
         const bool extra = pass >= options.optimisation_passes;
         std::size_t coned_away = 0;
         if (extra && options.vertex_cones) {
@@ -83,10 +78,19 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             improve_by_vertex_cones(c, steiner, kAngleRescueBelow, kSliverThreshold, stats, dropped);
             coned_away = stats.steiner_suppressed - before;
         }
-        std::vector<char> at_steiner;
-        if (extra) at_steiner = steiner_flags(m, steiner);
-        const std::size_t slivers =
-            options.slivers ? remove_slivers(c, kSliverThreshold, stats, extra ? &at_steiner : nullptr) : 0;
+        // Sliver points leave the tetrahedra at Steiner points to the
+        // steps above: points put there crowd the Steiner point (the chain
+        // link's two kept 25 and 17 bad tetrahedra, their nearest
+        // neighbours sliver points 0.15-0.6 away where the edges are 1-4
+        // long), and no later move or cone finds a good ball among them.
+        // On the 37 shared surfaces Table II's last row went 185 -> 138
+        // (octocat 44 -> 20, chain link 42 -> 24), under q = 0.1 18,174 ->
+        // 18,125; on 140 turned copies 197 -> 134, 30,276 -> 30,444.
+        std::size_t slivers = 0;
+        if (options.slivers && !extra) {
+            const std::vector<char> at_steiner = steiner_flags(m, steiner);
+            slivers = remove_slivers(c, kSliverThreshold, stats, &at_steiner);
+        }
         steiner_progress = suppressed > 0 || relocated > 0 || coned_away > 0;
         stats.steiner_relocated += relocated;
         stats.flips += flips;

@@ -570,12 +570,13 @@ bool SliverRemover::insert(TetId sliver, Choice& best) {
 
 }  // namespace
 
-std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats, const std::vector<char>* only_at) {
+std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats,
+                           const std::vector<char>* left_alone) {
     SliverRemover remover(c, threshold);
     std::size_t inserted = 0;
     const std::size_t slots = c.m.slot_count();
     for (TetId t = 0; t < slots; ++t) {
-        if (c.in_domain(t) && (!only_at || has_flagged_corner(c.m, t, *only_at)) && c.changed_near(t) &&
+        if (c.in_domain(t) && (!left_alone || !has_flagged_corner(c.m, t, *left_alone)) && c.changed_near(t) &&
             radius_ratio(c.m, t) < threshold)
             inserted += remover.remove(t);
     }

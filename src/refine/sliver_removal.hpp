@@ -47,10 +47,10 @@ namespace cbr::refine {
 // would fail again); returns the number of points inserted, and adds the
 // cavities it did not rate (a face of their boundary caps every star below
 // the bar: radius_ratio_bound_for_face) to stats.sliver_cavities_skipped.
-// `only_at` (one flag per vertex), when given: only the tetrahedra with a
-// flagged corner.
+// `left_alone` (one flag per vertex), when given: the tetrahedra with a
+// flagged corner are not tried (refine_mesh flags the Steiner points).
 std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats,
-                           const std::vector<char>* only_at = nullptr);
+                           const std::vector<char>* left_alone = nullptr);
 
 // The last resort, once, after the optimisation passes: a flat sliver of
 // four input points (radius ratio under 1e-6) that remove_slivers left
