@@ -2465,8 +2465,8 @@ TEST_CASE("refine: no bad element touches a Steiner point (suppression retried, 
     // in a pocket of 29 input triangles with edges 4-19 long, 11 of them
     // needles (triangle radius ratio under 1/15: any tetrahedron on them
     // is under q = 0.1); while the sliver points went at the Steiner
-    // points' tetrahedra too, it kept 24 bad ones (session 61); now the
-    // steps suppress it.
+    // points' tetrahedra too, it kept 24 bad ones (session 61); now it
+    // keeps none.
     struct Case {
         const char* name;
         bool bad_without_the_steps;
