@@ -911,7 +911,7 @@ TEST_CASE("refine: flips for the angle may replace an edge over the size bound b
         // Measured 0.080 -> 0.53 deg. Each flip raises the angle where it
         // flips, but the sweeps and moves that follow take another course,
         // so coins are a draw: of 30, 24-96-gons of radius 10 and 30 and
-        // thickness 1-3, 16 higher, 11 the same, 3 lower since the sliver
+        // thickness 1-3, 14 higher, 13 the same, 3 lower since the sliver
         // points leave the Steiner points' tetrahedra alone (64-gon radius
         // 10 thickness 1, this test's until then, 0.43 -> 0.14; before,
         // 0.10 -> 0.46; 24-gon radius 30 thickness 1 0.53 -> 0.51).
