@@ -13,6 +13,7 @@
 #include "refine/smoothing.hpp"
 #include "refine/steiner_relocation.hpp"
 #include "refine/steiner_removal.hpp"
+#include "refine/tet_measures.hpp"
 #include "refine/vertex_cones.hpp"
 
 namespace cbr::refine {
@@ -31,12 +32,31 @@ constexpr double kSliverThreshold = 0.1;
 // with movable corners too, 649 more, for the same minima.
 constexpr double kAngleRescueBelow = 1.0;
 // Passes beyond options.optimisation_passes while the Steiner points still
-// have bad tetrahedra and the last pass suppressed, relocated or coned one
-// away. They are for the Steiner points, so they insert no sliver points:
-// the sliver points of these late passes multiplied on thin walls (feeder
-// body: 123,119 -> 153,983 tetrahedra in its last three passes, more of
-// them under q = 0.1).
+// have bad tetrahedra: the first always (its cones from a vertex have not
+// had their turn), the others while the last pass suppressed, relocated or
+// coned one away. They are for the Steiner points, so they insert no
+// sliver points: the sliver points of these late passes multiplied on
+// thin walls (feeder body: 123,119 -> 153,983 tetrahedra in its last three
+// passes, more of them under q = 0.1).
 constexpr int kExtraSteinerPasses = 5;
+
+namespace {
+
+// The vertices whose tetrahedra the sliver points leave alone: the Steiner
+// points and the points of their balls that can move (not input points).
+std::vector<char> steiner_neighbourhoods(const RefineContext& c, const std::vector<mesh::VertexId>& steiner) {
+    const mesh::TetMesh& m = c.m;
+    const std::vector<char> is_steiner = steiner_flags(m, steiner);
+    std::vector<char> flags = is_steiner;
+    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
+        if (m.is_free(t) || m.is_ghost(t) || !has_flagged_corner(m, t, is_steiner)) continue;
+        for (mesh::VertexId v : corners_of(m, t))
+            if (c.is_movable(v)) flags[v] = 1;
+    }
+    return flags;
+}
+
+}  // namespace
 
 RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
                         const std::vector<std::int32_t>& region_of_slot, std::vector<mesh::VertexId>& steiner,
@@ -56,8 +76,9 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
     if (options.steiner_suppression) remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped);
     bool steiner_progress = false;
     for (int pass = 0; pass < options.optimisation_passes + kExtraSteinerPasses; ++pass) {  // step (e)
+        const bool later_extra = pass > options.optimisation_passes;
         if (pass >= options.optimisation_passes &&
-            (!steiner_progress || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
+            ((later_extra && !steiner_progress) || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
             break;
         c.start_pass();
         const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold).total() : 0;
@@ -78,18 +99,22 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             improve_by_vertex_cones(c, steiner, kAngleRescueBelow, kSliverThreshold, stats, dropped);
             coned_away = stats.steiner_suppressed - before;
         }
-        // Sliver points leave the tetrahedra at Steiner points to the
-        // steps above: points put there crowd the Steiner point (the chain
-        // link's two kept 25 and 17 bad tetrahedra, their nearest
-        // neighbours sliver points 0.15-0.6 away where the edges are 1-4
-        // long), and no later move or cone finds a good ball among them.
-        // On the 37 shared surfaces Table II's last row went 185 -> 138
-        // (octocat 44 -> 20, chain link 42 -> 24), under q = 0.1 18,174 ->
-        // 18,125; on 140 turned copies 197 -> 134, 30,276 -> 30,444.
+        // Sliver points leave the tetrahedra at Steiner points, and at the
+        // points next to them, to the steps above: points put there crowd
+        // the Steiner point (the chain link's two kept 25 and 17 bad
+        // tetrahedra, their nearest neighbours sliver points 0.15-0.6 away
+        // where the edges are 1-4 long), and no later move or cone finds a
+        // good ball among them. On the 37 shared surfaces Table II's last
+        // row went 185 -> 138 with the Steiner points' own tetrahedra left
+        // alone, -> 112 with their neighbours' too (under q = 0.1 18,174 ->
+        // 18,125 -> 17,334); on 140 turned copies 197 -> 134 -> 81 (30,276
+        // -> 30,444 -> 29,516; the first extra pass always running, above,
+        // is part of the last step: without it 102 and 29,717, and the
+        // chain link turned by seed 164 kept a 0.0012 deg tetrahedron).
         std::size_t slivers = 0;
         if (options.slivers && !extra) {
-            const std::vector<char> at_steiner = steiner_flags(m, steiner);
-            slivers = remove_slivers(c, kSliverThreshold, stats, &at_steiner);
+            const std::vector<char> near_steiner = steiner_neighbourhoods(c, steiner);
+            slivers = remove_slivers(c, kSliverThreshold, stats, &near_steiner);
         }
         steiner_progress = suppressed > 0 || relocated > 0 || coned_away > 0;
         stats.steiner_relocated += relocated;
