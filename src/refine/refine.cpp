@@ -76,9 +76,9 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
     if (options.steiner_suppression) remove_bad_steiner_points(c, steiner, kSliverThreshold, stats, dropped);
     bool steiner_progress = false;
     for (int pass = 0; pass < options.optimisation_passes + kExtraSteinerPasses; ++pass) {  // step (e)
-        const bool later_extra = pass > options.optimisation_passes;
-        if (pass >= options.optimisation_passes &&
-            ((later_extra && !steiner_progress) || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
+        const bool extra = pass >= options.optimisation_passes;  // kExtraSteinerPasses says when they run
+        const bool first_extra = pass == options.optimisation_passes;
+        if (extra && ((!first_extra && !steiner_progress) || bad_tets_at_steiner(c, steiner, kSliverThreshold) == 0))
             break;
         c.start_pass();
         const std::size_t flips = options.flips ? improve_by_flips(c, kFlipThreshold).total() : 0;
@@ -92,7 +92,6 @@ RefineStats refine_mesh(mesh::TetMesh& m, const recover::ConstraintFaces& faces,
             options.steiner_relocation ? relocate_steiner_points(c, steiner, kSliverThreshold) : 0;
         // An extra pass: the cones from a vertex too (vertex_cones.hpp),
         // whose suppressions the next pass's flips and smoothing build on.
-        const bool extra = pass >= options.optimisation_passes;
         std::size_t coned_away = 0;
         if (extra && options.vertex_cones) {
             const std::size_t before = stats.steiner_suppressed;

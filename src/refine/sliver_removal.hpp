@@ -48,7 +48,8 @@ namespace cbr::refine {
 // cavities it did not rate (a face of their boundary caps every star below
 // the bar: radius_ratio_bound_for_face) to stats.sliver_cavities_skipped.
 // `left_alone` (one flag per vertex), when given: the tetrahedra with a
-// flagged corner are not tried (refine_mesh flags the Steiner points).
+// flagged corner are not tried (refine_mesh flags the Steiner points and
+// the non-input points of their balls).
 std::size_t remove_slivers(RefineContext& c, double threshold, RefineStats& stats,
                            const std::vector<char>* left_alone = nullptr);
 
