@@ -13,7 +13,6 @@
 #include "refine/smoothing.hpp"
 #include "refine/steiner_relocation.hpp"
 #include "refine/steiner_removal.hpp"
-#include "refine/tet_measures.hpp"
 #include "refine/vertex_cones.hpp"
 
 namespace cbr::refine {
@@ -45,15 +44,7 @@ namespace {
 // The vertices whose tetrahedra the sliver points leave alone: the Steiner
 // points and the points of their balls that can move (not input points).
 std::vector<char> steiner_neighbourhoods(const RefineContext& c, const std::vector<mesh::VertexId>& steiner) {
-    const mesh::TetMesh& m = c.m;
-    const std::vector<char> is_steiner = steiner_flags(m, steiner);
-    std::vector<char> flags = is_steiner;
-    for (mesh::TetId t = 0; t < m.slot_count(); ++t) {
-        if (m.is_free(t) || m.is_ghost(t) || !has_flagged_corner(m, t, is_steiner)) continue;
-        for (mesh::VertexId v : corners_of(m, t))
-            if (c.is_movable(v)) flags[v] = 1;
-    }
-    return flags;
+    return grown_by_one_ring(c, steiner_flags(c.m, steiner), [&](mesh::VertexId v) { return c.is_movable(v); });
 }
 
 }  // namespace

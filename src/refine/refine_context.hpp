@@ -12,6 +12,7 @@
 #include "mesh/key_table.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "recover/constraint_faces.hpp"
+#include "refine/quality_stats.hpp"
 #include "refine/refine_options.hpp"
 #include "refine/sizing_field.hpp"
 
@@ -120,5 +121,19 @@ private:
     std::vector<double> reach_;  // per surface vertex: largest circumradius of its input triangles
     std::vector<char> movable_;
 };
+
+// The flags (one per vertex) grown by one ring of vertices: every corner
+// of a tetrahedron of the bounded regions with a corner flagged in `flags`
+// is flagged in the copy returned, if `may_flag(corner)`.
+template <class MayFlag>
+std::vector<char> grown_by_one_ring(const RefineContext& c, const std::vector<char>& flags, MayFlag may_flag) {
+    std::vector<char> grown = flags;
+    for (mesh::TetId t = 0; t < c.m.slot_count(); ++t) {
+        if (!c.in_domain(t) || !has_flagged_corner(c.m, t, flags)) continue;
+        for (int i = 0; i < 4; ++i)
+            if (may_flag(c.m.vertex(t, i))) grown[c.m.vertex(t, i)] = 1;
+    }
+    return grown;
+}
 
 }  // namespace cbr::refine

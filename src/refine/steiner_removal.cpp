@@ -144,20 +144,10 @@ std::vector<TetId> neighbourhood(const RefineContext& c, const std::vector<TetId
             for (int i = 0; i < 4; ++i)
                 if (m.vertex(t, i) != mesh::kGhostVertex) near[m.vertex(t, i)] = 1;
     for (VertexId v : points) near[v] = 1;
-    const auto touches = [&](TetId t) {
-        const VertexId* w = m.vertices(t);
-        return near[w[0]] || near[w[1]] || near[w[2]] || near[w[3]];
-    };
-    for (int ring = 0; ring < kRefillRings; ++ring) {
-        std::vector<char> next = near;
-        for (TetId t = 0; t < m.slot_count(); ++t)
-            if (c.in_domain(t) && touches(t))
-                for (int i = 0; i < 4; ++i) next[m.vertex(t, i)] = 1;
-        near.swap(next);
-    }
+    for (int ring = 0; ring < kRefillRings; ++ring) near = grown_by_one_ring(c, near, [](VertexId) { return true; });
     std::vector<TetId> out;
     for (TetId t = 0; t < m.slot_count(); ++t)
-        if (c.in_domain(t) && touches(t)) out.push_back(t);
+        if (c.in_domain(t) && has_flagged_corner(m, t, near)) out.push_back(t);
     return out;
 }
 
